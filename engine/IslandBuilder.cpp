@@ -1,0 +1,75 @@
+#include <coulomb/engine/IslandBuilder.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace coulomb::engine {
+
+std::int32_t IslandBuilder::find(std::int32_t body) {
+  while (parent_[body] != body) {
+    parent_[body] = parent_[parent_[body]];  // path halving
+    body = parent_[body];
+  }
+  return body;
+}
+
+void IslandBuilder::unite(std::int32_t a, std::int32_t b) {
+  a = find(a);
+  b = find(b);
+  if (a == b) return;
+  // The smaller index becomes the root: roots are then each island's smallest body, independent
+  // of the edge order, which keeps island numbering deterministic.
+  if (b < a) std::swap(a, b);
+  parent_[b] = a;
+}
+
+std::vector<Island> IslandBuilder::build(std::span<const std::uint8_t> isDynamic,
+                                         std::span<const ConstraintEdge> edges) {
+  const auto bodyCount = static_cast<std::int32_t>(isDynamic.size());
+  parent_.resize(isDynamic.size());
+  for (std::int32_t i = 0; i < bodyCount; ++i) parent_[i] = i;
+
+  auto dynamicBody = [&](std::int32_t body) {
+    if (body == ConstraintEdge::kNoBody) return false;
+    if (body < 0 || body >= bodyCount)
+      throw std::out_of_range("IslandBuilder: constraint names body " + std::to_string(body) +
+                              " of " + std::to_string(bodyCount));
+    return isDynamic[body] != 0;
+  };
+
+  std::vector<std::int32_t> edgeRoot(edges.size(), ConstraintEdge::kNoBody);
+  for (const ConstraintEdge& e : edges) {
+    const bool a = dynamicBody(e.bodyA), b = dynamicBody(e.bodyB);
+    if (a && b) unite(e.bodyA, e.bodyB);
+  }
+
+  std::vector<std::int32_t> islandOfRoot(isDynamic.size(), -1);
+  std::vector<Island> islands;
+  auto islandOf = [&](std::int32_t body) -> Island& {
+    const std::int32_t root = find(body);
+    if (islandOfRoot[root] < 0) {
+      islandOfRoot[root] = static_cast<std::int32_t>(islands.size());
+      islands.push_back(Island{});
+    }
+    return islands[islandOfRoot[root]];
+  };
+  // Visit edges first only to decide which roots have constraints; create islands in root order.
+  std::vector<std::uint8_t> rootHasEdge(isDynamic.size(), 0);
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const ConstraintEdge& e = edges[k];
+    const std::int32_t dyn = dynamicBody(e.bodyA) ? e.bodyA : (dynamicBody(e.bodyB) ? e.bodyB : -1);
+    if (dyn < 0) continue;
+    edgeRoot[k] = find(dyn);
+    rootHasEdge[edgeRoot[k]] = 1;
+  }
+  for (std::int32_t i = 0; i < bodyCount; ++i)
+    if (isDynamic[i] && rootHasEdge[find(i)]) islandOf(i).bodies.push_back(i);
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    if (edgeRoot[k] >= 0)
+      islands[islandOfRoot[edgeRoot[k]]].constraints.push_back(static_cast<std::int32_t>(k));
+  for (std::size_t i = 0; i < islands.size(); ++i) islands[i].id = static_cast<std::int32_t>(i);
+  return islands;
+}
+
+}  // namespace coulomb::engine
