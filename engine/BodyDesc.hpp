@@ -1,0 +1,36 @@
+#pragma once
+// Everything needed to create a body. Poses and velocities are in world coordinates; shapes are
+// placed in the body's reference frame (`pose`). The World moves the body frame to the centre of
+// mass (axes unchanged) and re-expresses the shapes' local poses accordingly.
+#include <coulomb/geometry/BodyState.hpp>
+#include <coulomb/geometry/Collider.hpp>
+#include <coulomb/geometry/SpatialInertia.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace coulomb::engine {
+
+struct ShapeDesc {
+  geometry::Shape shape;
+  geometry::Pose localPose;  // shape frame in the body's reference frame
+  geometry::Material material;
+  geometry::CollisionFilter filter;
+};
+
+struct BodyDesc {
+  std::string name;  // optional; used in messages and scene look-ups
+  geometry::MotionType motionType = geometry::MotionType::Dynamic;
+  geometry::Pose pose;                                        // reference frame in world
+  Eigen::Vector3d linearVelocity = Eigen::Vector3d::Zero();   // [m/s] of the COM, world
+  Eigen::Vector3d angularVelocity = Eigen::Vector3d::Zero();  // [rad/s] world
+  std::vector<ShapeDesc> shapes;
+  /// [kg/m^3] Mass from the shapes at this density; nullopt: WorldSettings::defaultDensity.
+  std::optional<double> density;
+  /// Explicit mass, COM (reference frame) and inertia about the COM (reference axes); overrides
+  /// the density. Required for a dynamic body without finite shapes.
+  std::optional<geometry::SpatialInertia> mass;
+};
+
+}  // namespace coulomb::engine

@@ -1,0 +1,27 @@
+#pragma once
+// Every tunable of a World, with its unit, default and the reason for the default.
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+
+namespace coulomb::engine {
+
+struct WorldSettings {
+  /// [m/s^2] Uniform gravitational acceleration. Default: standard gravity along -z (z up, as in
+  /// URDF/ROS and the scenes of SCENES.md).
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};
+  /// [s] Step used by World::step() without an argument. Default 0.01: the rate at which the
+  /// design's peer engines are compared (ARCHITECTURE.md section 7).
+  double timeStep = 0.01;
+  /// [kg/m^3] Density for bodies that give neither a density nor an explicit mass. Default: water.
+  double defaultDensity = 1000.0;
+  /// [-] Largest accepted | |q| - 1 | of a body's orientation quaternion; the quaternion is then
+  /// normalised. Larger deviations are an error (a silent renormalisation hides typos).
+  double unitQuaternionTolerance = 1e-6;
+
+  /// nullopt if every value is usable, else a message naming the first bad one.
+  [[nodiscard]] std::optional<std::string> validate() const;
+};
+
+}  // namespace coulomb::engine

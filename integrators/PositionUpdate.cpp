@@ -1,0 +1,26 @@
+#include <coulomb/geometry/Quaternion.hpp>
+#include <coulomb/integrators/FreeRotation.hpp>
+#include <coulomb/integrators/PositionUpdate.hpp>
+
+namespace coulomb::integrators {
+
+void integratePositions(geometry::BodyState& state, double h) {
+  using geometry::MotionType;
+  for (std::size_t i = 0; i < state.size(); ++i) {
+    if (state.alive[i] == 0 || state.motionTypes[i] == MotionType::Static) continue;
+    geometry::Pose& pose = state.poses[i];
+    pose.position += h * state.linearVelocities[i];
+    if (state.motionTypes[i] == MotionType::Kinematic) {
+      pose.rotation =
+          geometry::integrateWorldRotation(pose.rotation, state.angularVelocities[i], h);
+      continue;
+    }
+    const Eigen::Vector3d momentum = state.angularMomentum(i);
+    pose.rotation = rotateTorqueFree(pose.rotation, state.principalFrames[i],
+                                     state.principalMoments[i], momentum, h);
+    state.refreshWorldInertia(i);
+    state.angularVelocities[i] = state.worldInverseInertias[i] * momentum;
+  }
+}
+
+}  // namespace coulomb::integrators
