@@ -1,0 +1,30 @@
+#pragma once
+// Candidate pairs for the narrow phase: FCL's dynamic AABB tree (through FclScene, updated
+// incrementally), planes tested separately (they crash the tree, FCL-NOTES.md 4.8), then the
+// filters: no pair within one body, category/mask bits, and a caller's predicate (e.g. skip
+// bodies joined by a joint, or static-static pairs). Output sorted by (id of A, id of B).
+#include <coulomb/geometry/Collider.hpp>
+#include <coulomb/geometry/FclAdapter.hpp>
+#include <coulomb/geometry/NarrowPhase.hpp>
+
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace coulomb::geometry {
+
+/// Returns true to keep the pair (a.id < b.id). Empty = keep every pair the filters accept.
+using PairPredicate = std::function<bool(const Collider& a, const Collider& b)>;
+
+class BroadPhase {
+ public:
+  /// Brings `scene` in line with `colliders` (new shapes built, removed colliders dropped, poses
+  /// set), refits the tree and returns the filtered candidate pairs. Colliders with
+  /// usable[i] == false are left out; a collider FCL rejects is reported and left out too.
+  std::vector<CandidatePair> update(const std::vector<Collider>& colliders,
+                                    std::span<const Pose> shapePoses, std::vector<char>& usable,
+                                    FclScene& scene, double margin, const PairPredicate& keep,
+                                    std::vector<CollisionFailure>& failures);
+};
+
+}  // namespace coulomb::geometry

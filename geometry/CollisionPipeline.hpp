@@ -1,0 +1,77 @@
+#pragma once
+// The collision stage of World::step in one call: colliders + body poses in, persistent
+// manifolds (warm starts carried) and per-pair diagnostics out. Deterministic: the same input
+// gives the same manifolds in the same order, whatever FCL's internal tree order is.
+#include <coulomb/geometry/BroadPhase.hpp>
+#include <coulomb/geometry/Collider.hpp>
+#include <coulomb/geometry/ContactCache.hpp>
+#include <coulomb/geometry/ContactManifold.hpp>
+#include <coulomb/geometry/FclAdapter.hpp>
+#include <coulomb/geometry/NarrowPhase.hpp>
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace coulomb::geometry {
+
+struct CollisionSettings {
+  /// [m] Points closer than this are kept with a negative depth (speculative contacts), and
+  /// AABBs are fattened by it, so a resting contact does not flicker on and off.
+  double speculativeMargin = 0.005;
+  /// [m] Distance within which a point whose feature id changed still inherits the old impulses.
+  double matchDistance = 0.002;
+  /// Contacts FCL may report per mesh pair before it stops (it truncates, FCL-NOTES.md 4.4).
+  int maxMeshContacts = 64;
+};
+
+struct CollisionStats {
+  std::size_t candidatePairs = 0;  // after filters
+  std::size_t touchingPairs = 0;   // manifolds
+  std::size_t contactPoints = 0;
+};
+
+struct CollisionDiagnostics {
+  std::vector<CollisionFailure> failures;  // skipped pairs/colliders with the reason
+  CollisionStats stats;
+};
+
+class CollisionPipeline {
+ public:
+  explicit CollisionPipeline(CollisionSettings settings = {});
+
+  /// One collision step. `bodyPoses[k]` is the pose of the body with BodyId.index == k.
+  /// A collider with a bad shape, an unknown body or a non-finite pose is skipped and reported;
+  /// a pair FCL fails on is skipped and reported; nothing throws.
+  const std::vector<ContactManifold>& step(const std::vector<Collider>& colliders,
+                                           std::span<const Pose> bodyPoses,
+                                           const PairPredicate& keepPair = {});
+
+  [[nodiscard]] const CollisionDiagnostics& diagnostics() const { return diagnostics_; }
+  /// Persistent manifolds; the solver writes applied impulses into their points.
+  [[nodiscard]] ContactCache& cache() { return cache_; }
+  [[nodiscard]] const ContactCache& cache() const { return cache_; }
+  [[nodiscard]] const CollisionSettings& settings() const { return settings_; }
+
+  /// Test hook: runs inside the guarded region of every FCL query (throw to simulate FCL failing).
+  void setFaultInjector(FclFaultInjector injector) {
+    narrowPhase_.setFaultInjector(std::move(injector));
+  }
+
+  /// The check to run when a collider is created: a message naming the problem, or nullopt.
+  static std::optional<std::string> validateCollider(const Collider& collider);
+
+ private:
+  CollisionSettings settings_;
+  FclScene scene_;
+  BroadPhase broadPhase_;
+  NarrowPhase narrowPhase_;
+  ContactCache cache_;
+  CollisionDiagnostics diagnostics_;
+  std::vector<Pose> shapePoses_;
+  std::vector<char> usable_;
+  std::vector<ContactManifold> fresh_;
+};
+
+}  // namespace coulomb::geometry

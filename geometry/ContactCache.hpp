@@ -1,0 +1,39 @@
+#pragma once
+// Manifolds that persist from step to step. Each new point takes over the impulses of the old
+// point it matches (same feature id, else the nearest old anchor within `matchDistance`), so the
+// solver can warm start. Plain data: a snapshot saves manifolds() and restore() puts it back.
+#include <coulomb/geometry/ContactManifold.hpp>
+#include <coulomb/geometry/Pose.hpp>
+
+#include <span>
+#include <vector>
+
+namespace coulomb::geometry {
+
+struct ContactCacheSettings {
+  double matchDistance = 0.002;   // [m] proximity match for points whose feature id changed
+  double normalAgreement = 0.95;  // min n_old . n_new to carry impulses (FCL-NOTES.md 9)
+};
+
+class ContactCache {
+ public:
+  explicit ContactCache(ContactCacheSettings settings = {}) : settings_(settings) {}
+
+  /// Replaces the cached manifolds by `fresh` (any order), carrying impulses over from matching
+  /// points of the last step. `bodyPoses` (by BodyId.index) place the old anchors.
+  const std::vector<ContactManifold>& refresh(std::vector<ContactManifold> fresh,
+                                              std::span<const Pose> bodyPoses);
+
+  /// Sorted by (colliderA, colliderB). The solver writes the impulses it applied back here.
+  [[nodiscard]] std::vector<ContactManifold>& manifolds() { return manifolds_; }
+  [[nodiscard]] const std::vector<ContactManifold>& manifolds() const { return manifolds_; }
+  /// Snapshot restore: takes a copy of a previously saved manifolds() vector.
+  void restore(std::vector<ContactManifold> saved);
+  void clear() { manifolds_.clear(); }
+
+ private:
+  ContactCacheSettings settings_;
+  std::vector<ContactManifold> manifolds_;
+};
+
+}  // namespace coulomb::geometry

@@ -1,0 +1,294 @@
+// The only translation unit that includes FCL (ARCHITECTURE.md section 1). Facts relied on are
+// in FCL-NOTES.md: GST_LIBCCD always (section 3), meshes first with the normal re-oriented
+// (4.1), abs() of sphere-triangle depth (4.2), zero normals dropped (4.3), halfspaces kept out of
+// the tree (4.8), AABB margin by growing aabb_local/aabb_radius (6), every call wrapped (4.12).
+#include <coulomb/geometry/FclAdapter.hpp>
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace coulomb::geometry {
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+
+std::string name(ColliderId id) {
+  std::ostringstream out;
+  out << "collider " << id.index << "." << id.generation;
+  return out.str();
+}
+
+std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Shape& shape, const std::string& who) {
+  return std::visit(
+      Overloaded{
+          [](const Sphere& s) -> std::shared_ptr<fcl::CollisionGeometryd> {
+            return std::make_shared<fcl::Sphered>(s.radius);
+          },
+          [](const Box& b) -> std::shared_ptr<fcl::CollisionGeometryd> {
+            const Eigen::Vector3d side = 2.0 * b.halfExtents;
+            return std::make_shared<fcl::Boxd>(side.x(), side.y(), side.z());
+          },
+          [](const Capsule& c) -> std::shared_ptr<fcl::CollisionGeometryd> {
+            return std::make_shared<fcl::Capsuled>(c.radius, 2.0 * c.halfLength);
+          },
+          [](const Cylinder& c) -> std::shared_ptr<fcl::CollisionGeometryd> {
+            return std::make_shared<fcl::Cylinderd>(c.radius, 2.0 * c.halfLength);
+          },
+          [](const Plane& p) -> std::shared_ptr<fcl::CollisionGeometryd> {
+            const double norm = p.normal.norm();  // Halfspace {n.x <= d} with unit n
+            return std::make_shared<fcl::Halfspaced>(p.normal / norm, p.offset / norm);
+          },
+          [&who](const ConvexHull& h) -> std::shared_ptr<fcl::CollisionGeometryd> {
+            if (h.triangles.empty())
+              throw std::invalid_argument(who + ": convex_hull has no faces (run makeConvexHull)");
+            auto vertices =
+                std::make_shared<std::vector<fcl::Vector3d>>(h.vertices.begin(), h.vertices.end());
+            auto faces = std::make_shared<std::vector<int>>();
+            faces->reserve(h.triangles.size() * 4);
+            for (const Eigen::Vector3i& t : h.triangles) {
+              faces->push_back(3);
+              faces->insert(faces->end(), {t[0], t[1], t[2]});
+            }
+            return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(h.triangles.size()),
+                                                  faces, /*throw_if_invalid=*/true);
+          },
+          [&who](const TriangleMesh& m) -> std::shared_ptr<fcl::CollisionGeometryd> {
+            auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+            std::vector<fcl::Vector3d> vertices(m.vertices.begin(), m.vertices.end());
+            std::vector<fcl::Triangle> triangles;
+            triangles.reserve(m.triangles.size());
+            for (const Eigen::Vector3i& t : m.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+            if (model->beginModel() != fcl::BVH_OK ||
+                model->addSubModel(vertices, triangles) != fcl::BVH_OK ||
+                model->endModel() != fcl::BVH_OK)
+              throw std::invalid_argument(who + ": FCL could not build the mesh BVH");
+            return model;
+          }},
+      shape);
+}
+
+bool finite(const fcl::Contactd& c) {
+  return c.normal.allFinite() && c.pos.allFinite() && std::isfinite(c.penetration_depth);
+}
+
+}  // namespace
+
+struct FclScene::Impl {
+  struct Entry {
+    ColliderId id;
+    std::shared_ptr<const Shape> shape;
+    std::shared_ptr<fcl::CollisionGeometryd> geometry;
+    std::unique_ptr<fcl::CollisionObjectd> object;
+    bool isPlane = false;
+    bool isMesh = false;
+  };
+
+  double margin = 0.0;
+  std::map<ColliderId, std::unique_ptr<Entry>> entries;  // unique_ptr: stable user-data address
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+
+  const Entry& at(ColliderId id) const {
+    auto it = entries.find(id);
+    if (it == entries.end()) throw std::out_of_range("FclScene: unknown " + name(id));
+    return *it->second;
+  }
+
+  // FCL has no AABB margin: grow the geometry's local box and radius (FCL-NOTES.md section 6).
+  void fatten(fcl::CollisionGeometryd& g) const {
+    if (margin <= 0.0) return;
+    g.aabb_local.min_ -= fcl::Vector3d::Constant(margin);
+    g.aabb_local.max_ += fcl::Vector3d::Constant(margin);
+    g.aabb_radius += margin;
+  }
+};
+
+FclScene::FclScene(double aabbMargin) : impl_(std::make_unique<Impl>()) {
+  impl_->margin = std::max(0.0, aabbMargin);
+}
+FclScene::~FclScene() = default;
+FclScene::FclScene(FclScene&&) noexcept = default;
+FclScene& FclScene::operator=(FclScene&&) noexcept = default;
+
+void FclScene::upsert(ColliderId id, const std::shared_ptr<const Shape>& shape) {
+  const std::string who = name(id);
+  if (!shape) throw std::invalid_argument(who + ": has no shape");
+  auto it = impl_->entries.find(id);
+  if (it != impl_->entries.end() && it->second->shape == shape) return;
+  if (auto problem = validateShape(*shape)) throw std::invalid_argument(who + ": " + *problem);
+
+  auto entry = std::make_unique<Impl::Entry>();
+  entry->id = id;
+  entry->shape = shape;
+  entry->isPlane = std::holds_alternative<Plane>(*shape);
+  entry->isMesh = std::holds_alternative<TriangleMesh>(*shape);
+  try {
+    entry->geometry = makeGeometry(*shape, who);
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(who + ": FCL rejected the " + shapeKindName(*shape) + ": " +
+                                e.what());
+  }
+  entry->object = std::make_unique<fcl::CollisionObjectd>(entry->geometry);
+  impl_->fatten(*entry->geometry);
+  entry->object->computeAABB();
+  entry->object->setUserData(entry.get());
+
+  erase(id);
+  if (!entry->isPlane) impl_->manager.registerObject(entry->object.get());
+  impl_->entries.emplace(id, std::move(entry));
+}
+
+void FclScene::erase(ColliderId id) {
+  auto it = impl_->entries.find(id);
+  if (it == impl_->entries.end()) return;
+  if (!it->second->isPlane) impl_->manager.unregisterObject(it->second->object.get());
+  impl_->entries.erase(it);
+}
+
+bool FclScene::contains(ColliderId id) const {
+  return impl_->entries.count(id) != 0;
+}
+
+std::vector<ColliderId> FclScene::ids() const {
+  std::vector<ColliderId> out;
+  out.reserve(impl_->entries.size());
+  for (const auto& [id, entry] : impl_->entries) out.push_back(id);
+  return out;
+}
+
+void FclScene::setPose(ColliderId id, const Pose& worldPose) {
+  if (!worldPose.allFinite())
+    throw std::invalid_argument(name(id) + ": world pose is not finite (NaN or inf)");
+  const Impl::Entry& entry = impl_->at(id);
+  fcl::Transform3d transform = fcl::Transform3d::Identity();
+  transform.linear() = worldPose.rotation.normalized().toRotationMatrix();  // fcl#567
+  transform.translation() = worldPose.position;
+  entry.object->setTransform(transform);
+  entry.object->computeAABB();  // forgetting it leaves a stale AABB (fcl#40)
+}
+
+void FclScene::updateTree() {
+  impl_->manager.update();
+}
+
+std::vector<std::pair<ColliderId, ColliderId>> FclScene::overlappingPairs() const {
+  using Pairs = std::vector<std::pair<ColliderId, ColliderId>>;
+  Pairs pairs;
+  auto onPair = [](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
+    const ColliderId ia = static_cast<const Impl::Entry*>(a->getUserData())->id;
+    const ColliderId ib = static_cast<const Impl::Entry*>(b->getUserData())->id;
+    static_cast<Pairs*>(data)->emplace_back(std::min(ia, ib), std::max(ia, ib));
+    return false;  // keep traversing
+  };
+  impl_->manager.collide(&pairs, onPair);
+  std::sort(pairs.begin(), pairs.end());  // the tree's order changes every frame (fcl#368)
+  return pairs;
+}
+
+Aabb FclScene::worldAabb(ColliderId id) const {
+  const fcl::AABBd& box = impl_->at(id).object->getAABB();
+  return {box.min_, box.max_};
+}
+
+FclCollideResult FclScene::collide(ColliderId a, ColliderId b, int maxContacts,
+                                   const FclFaultInjector& inject) const {
+  FclCollideResult result;
+  const Impl::Entry& ea = impl_->at(a);
+  const Impl::Entry& eb = impl_->at(b);
+  const bool swap = eb.isMesh && !ea.isMesh;  // FCL wants the mesh first (FCL-NOTES.md 4.1)
+  const Impl::Entry& first = swap ? eb : ea;
+  const Impl::Entry& second = swap ? ea : eb;
+  try {
+    if (inject) inject(a, b);
+    fcl::CollisionRequestd request(static_cast<std::size_t>(std::max(1, maxContacts)), true);
+    request.gjk_solver_type = fcl::GST_LIBCCD;
+    fcl::CollisionResultd raw;
+    fcl::collide(first.object.get(), second.object.get(), request, raw);
+    std::vector<fcl::Contactd> contacts;
+    raw.getContacts(contacts);
+    for (const fcl::Contactd& c : contacts) {
+      if (!finite(c)) {
+        result.contacts.clear();
+        result.error = "FCL returned a non-finite contact";
+        return result;
+      }
+      const double length = c.normal.norm();
+      if (length < 0.5) continue;  // edge-touching mesh triangles, concentric spheres (4.3)
+      // The normal points from c.o1 to c.o2; o1 is not always `first` (4.1).
+      const bool fromFirst = c.o1 == first.geometry.get();
+      const bool fromA = fromFirst != swap;
+      FclContact out;
+      out.position = c.pos;
+      out.normal = (fromA ? 1.0 : -1.0) * c.normal / length;
+      out.depth = std::abs(c.penetration_depth);  // sphere-triangle sign bug (4.2, fcl#569)
+      const int t1 = static_cast<int>(c.b1), t2 = static_cast<int>(c.b2);
+      const int tFirst = fromFirst ? t1 : t2, tSecond = fromFirst ? t2 : t1;
+      out.triangleA = ea.isMesh ? (swap ? tSecond : tFirst) : -1;
+      out.triangleB = eb.isMesh ? (swap ? tFirst : tSecond) : -1;
+      result.contacts.push_back(out);
+    }
+  } catch (const std::exception& e) {
+    result.contacts.clear();
+    result.error = std::string("FCL collide threw: ") + e.what();
+  } catch (...) {
+    result.contacts.clear();
+    result.error = "FCL collide threw a non-standard exception";
+  }
+  return result;
+}
+
+FclDistanceResult FclScene::distance(ColliderId a, ColliderId b,
+                                     const FclFaultInjector& inject) const {
+  FclDistanceResult result;
+  const Impl::Entry& ea = impl_->at(a);
+  const Impl::Entry& eb = impl_->at(b);
+  if (ea.isPlane || eb.isPlane) {  // LIBCCD segfaults on halfspace distance (fcl#623)
+    result.error = "FCL distance is not available for planes";
+    return result;
+  }
+  try {
+    if (inject) inject(a, b);
+    fcl::DistanceRequestd request(true);
+    request.gjk_solver_type = fcl::GST_LIBCCD;
+    fcl::DistanceResultd raw;
+    const bool swap = eb.isMesh && !ea.isMesh;  // meshes first, as for collide
+    const Impl::Entry& first = swap ? eb : ea;
+    const Impl::Entry& second = swap ? ea : eb;
+    fcl::distance(first.object.get(), second.object.get(), request, raw);
+    fcl::Vector3d p1 = raw.nearest_points[0], p2 = raw.nearest_points[1];
+    if (first.isMesh && std::holds_alternative<Sphere>(*second.shape)) {
+      p1 = first.object->getTransform() * p1;  // mesh-sphere answers in local frames (section 5)
+      p2 = second.object->getTransform() * p2;
+    }
+    result.distance = raw.min_distance;
+    result.pointA = swap ? p2 : p1;
+    result.pointB = swap ? p1 : p2;
+    if (!std::isfinite(result.distance) || !result.pointA.allFinite() || !result.pointB.allFinite())
+      result.error = "FCL distance returned a non-finite value";
+  } catch (const std::exception& e) {
+    result.error = std::string("FCL distance threw: ") + e.what();
+  } catch (...) {
+    result.error = "FCL distance threw a non-standard exception";
+  }
+  return result;
+}
+
+}  // namespace coulomb::geometry

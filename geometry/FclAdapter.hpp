@@ -1,0 +1,87 @@
+#pragma once
+// The one door to FCL (the only file pair that sees FCL headers is FclAdapter.cpp). It owns one
+// FCL geometry + CollisionObject per collider and FCL's dynamic AABB tree, and answers guarded
+// queries: any exception or non-finite output from FCL/libccd comes back as an error string for
+// that pair, never as a throw (FCL-NOTES.md section 9, "Ordering and guards").
+#include <coulomb/geometry/Ids.hpp>
+#include <coulomb/geometry/Pose.hpp>
+#include <coulomb/geometry/Shape.hpp>
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace coulomb::geometry {
+
+struct Aabb {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();
+};
+
+/// One contact as FCL reports it, already re-oriented so the normal points from a to b.
+struct FclContact {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double depth = 0.0;
+  int triangleA = -1;  // mesh triangle index on a's side, -1 for primitives
+  int triangleB = -1;
+};
+
+struct FclCollideResult {
+  std::vector<FclContact> contacts;  // only finite contacts with a usable (|n| >= 0.5) normal
+  std::string error;                 // non-empty when FCL threw or returned NaN
+};
+
+struct FclDistanceResult {
+  double distance = 0.0;
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();  // world frame
+  Eigen::Vector3d pointB = Eigen::Vector3d::Zero();
+  std::string error;
+};
+
+/// Called inside the guarded region of every query (tests use it to throw as FCL would).
+using FclFaultInjector = std::function<void(ColliderId a, ColliderId b)>;
+
+class FclScene {
+ public:
+  /// `aabbMargin` [m] fattens every AABB so pairs closer than it reach the narrow phase.
+  explicit FclScene(double aabbMargin);
+  ~FclScene();
+  FclScene(FclScene&&) noexcept;
+  FclScene& operator=(FclScene&&) noexcept;
+  FclScene(const FclScene&) = delete;
+  FclScene& operator=(const FclScene&) = delete;
+
+  /// Creates (or rebuilds, when the shape pointer changed) the FCL geometry of a collider.
+  /// Throws std::invalid_argument naming the collider when the shape is degenerate.
+  /// Planes get an fcl::Halfspace but are kept out of the tree (FCL-NOTES.md section 4.8).
+  void upsert(ColliderId id, const std::shared_ptr<const Shape>& shape);
+  void erase(ColliderId id);
+  [[nodiscard]] bool contains(ColliderId id) const;
+  [[nodiscard]] std::vector<ColliderId> ids() const;  // sorted
+
+  /// World pose of the collider's shape frame; throws std::invalid_argument if not finite.
+  void setPose(ColliderId id, const Pose& worldPose);
+  /// Refits the tree after setPose calls (one rebalance for all moved objects).
+  void updateTree();
+  /// Every pair of tree objects whose (fattened) AABBs overlap, as (lower id, higher id), sorted.
+  [[nodiscard]] std::vector<std::pair<ColliderId, ColliderId>> overlappingPairs() const;
+  [[nodiscard]] Aabb worldAabb(ColliderId id) const;
+
+  /// fcl::collide with GST_LIBCCD. Meshes go first as FCL requires; the result is re-oriented.
+  [[nodiscard]] FclCollideResult collide(ColliderId a, ColliderId b, int maxContacts,
+                                         const FclFaultInjector& inject = {}) const;
+  /// fcl::distance for separated pairs (never with a plane: FCL crashes, fcl#623).
+  [[nodiscard]] FclDistanceResult distance(ColliderId a, ColliderId b,
+                                           const FclFaultInjector& inject = {}) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace coulomb::geometry

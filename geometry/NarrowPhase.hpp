@@ -1,0 +1,65 @@
+#pragma once
+// For each candidate pair, the raw contact (normal from A to B, candidate points, speculative
+// points within the margin) turned into a manifold of <= 4 points. Closed forms for the pairs
+// FCL gets wrong or answers with one point (PrimitiveContacts, BoxContacts); FCL (through
+// FclScene, guarded) for the rest. A failing pair is reported and skipped.
+#include <coulomb/geometry/Collider.hpp>
+#include <coulomb/geometry/ContactManifold.hpp>
+#include <coulomb/geometry/FclAdapter.hpp>
+#include <coulomb/geometry/ManifoldBuilder.hpp>
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace coulomb::geometry {
+
+/// Indices into the collider list, ordered so that colliders[a].id < colliders[b].id.
+struct CandidatePair {
+  std::size_t a = 0;
+  std::size_t b = 0;
+};
+
+/// A problem with one pair (b valid) or one collider (b invalid), reported instead of thrown.
+struct CollisionFailure {
+  ColliderId a;
+  ColliderId b;
+  std::string message;
+};
+
+struct NarrowPhaseSettings {
+  double margin = 0.005;     // [m] gaps below this still give (negative-depth) points
+  int maxMeshContacts = 64;  // FCL stops mesh traversal at this count (FCL-NOTES.md 4.4)
+};
+
+class NarrowPhase {
+ public:
+  explicit NarrowPhase(NarrowPhaseSettings settings = {}) : settings_(settings) {}
+
+  /// Appends one manifold per touching pair to `out` (in the order of `pairs`) and one entry per
+  /// failed pair to `failures`. `shapePoses` and `bodyPoses` are indexed like `colliders` and by
+  /// BodyId.index respectively.
+  void collide(std::span<const CandidatePair> pairs, const std::vector<Collider>& colliders,
+               std::span<const Pose> shapePoses, std::span<const Pose> bodyPoses,
+               const FclScene& scene, std::vector<ContactManifold>& out,
+               std::vector<CollisionFailure>& failures);
+
+  /// Raw contact of one pair, normal from a to b (a.id < b.id). Returns false when the pair is
+  /// farther apart than the margin; sets `error` (and returns false) when the pair failed.
+  bool contactPair(const Collider& a, const Pose& poseA, const Collider& b, const Pose& poseB,
+                   const FclScene& scene, PairContact& out, std::string& error) const;
+
+  /// Test hook: called inside FCL's guarded region before each FCL query.
+  void setFaultInjector(FclFaultInjector injector) { injector_ = std::move(injector); }
+  [[nodiscard]] const NarrowPhaseSettings& settings() const { return settings_; }
+
+ private:
+  bool viaFcl(const Collider& a, const Collider& b, const FclScene& scene, PairContact& out,
+              std::string& error) const;
+
+  NarrowPhaseSettings settings_;
+  FclFaultInjector injector_;
+  PairContact scratch_;
+};
+
+}  // namespace coulomb::geometry

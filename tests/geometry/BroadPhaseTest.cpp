@@ -1,0 +1,100 @@
+// Candidate pairs: sorted by collider ids, filtered by body, bits and the caller's predicate.
+#include <coulomb/geometry/BroadPhase.hpp>
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+namespace coulomb::geometry {
+namespace {
+
+struct Fixture {
+  std::vector<Collider> colliders;
+  std::vector<Pose> poses;
+  FclScene scene{0.005};
+  BroadPhase broad;
+  std::vector<CollisionFailure> failures;
+
+  void add(std::uint32_t id, std::uint32_t body, Shape shape, const Eigen::Vector3d& at) {
+    Collider c;
+    c.id = {id, 0};
+    c.body = {body, 0};
+    c.shape = std::make_shared<const Shape>(std::move(shape));
+    colliders.push_back(c);
+    poses.push_back(Pose::translation(at));
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> run(const PairPredicate& keep = {}) {
+    std::vector<char> usable(colliders.size(), 1);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+    for (const CandidatePair& p :
+         broad.update(colliders, poses, usable, scene, 0.005, keep, failures))
+      out.emplace_back(colliders[p.a].id.index, colliders[p.b].id.index);
+    return out;
+  }
+};
+
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+TEST(BroadPhase, SortedByIdsWhateverTheListOrder) {
+  Fixture f;  // a row of touching boxes, listed out of id order
+  f.add(5, 5, Box{}, {2.0, 0, 0});
+  f.add(1, 1, Box{}, {0.0, 0, 0});
+  f.add(3, 3, Box{}, {1.0, 0, 0});
+  f.add(9, 9, Box{}, {3.0, 0, 0});
+  EXPECT_EQ(f.run(), (Pairs{{1, 3}, {3, 5}, {5, 9}}));
+  f.poses[0] = Pose::translation({20, 0, 0});  // incremental update: 5 leaves
+  EXPECT_EQ(f.run(), (Pairs{{1, 3}}));
+}
+
+TEST(BroadPhase, NoPairsWithinOneBody) {
+  Fixture f;
+  f.add(1, 7, Box{}, {0, 0, 0});
+  f.add(2, 7, Sphere{}, {0.5, 0, 0});
+  f.add(3, 8, Sphere{}, {0.0, 0, 0.9});
+  EXPECT_EQ(f.run(), (Pairs{{1, 3}, {2, 3}}));
+}
+
+TEST(BroadPhase, CategoryAndMaskBits) {
+  Fixture f;
+  f.add(1, 1, Box{}, {0, 0, 0});
+  f.add(2, 2, Box{}, {0.9, 0, 0});
+  f.add(3, 3, Box{}, {-0.9, 0, 0});
+  f.colliders[1].filter = {0b10, 0b10};  // collider 2 only meets category 2
+  EXPECT_EQ(f.run(), (Pairs{{1, 3}}));
+  f.colliders[0].filter = {0b11, 0xffffffffu};
+  EXPECT_EQ(f.run(), (Pairs{{1, 2}, {1, 3}}));
+}
+
+TEST(BroadPhase, PredicateSkipsJointedOrStaticPairs) {
+  Fixture f;
+  f.add(1, 1, Box{}, {0, 0, 0});
+  f.add(2, 2, Box{}, {0.9, 0, 0});
+  f.add(3, 3, Box{}, {-0.9, 0, 0});
+  const PairPredicate notJointed = [](const Collider& a, const Collider& b) {
+    return !(a.body.index == 1 && b.body.index == 2);  // say bodies 1 and 2 share a joint
+  };
+  EXPECT_EQ(f.run(notJointed), (Pairs{{1, 3}}));
+}
+
+TEST(BroadPhase, PlanesPairWithEverythingNearTheirSurface) {
+  Fixture f;
+  f.add(1, 0, Plane{}, {0, 0, 0});
+  f.add(2, 1, Box{}, {0, 0, 0.503});              // 3 mm above: within the margin
+  f.add(3, 2, Box{}, {3, 0, 2.0});                // far above
+  f.add(4, 3, Sphere{}, {-3, 0, 0.4});            // sunk
+  f.add(5, 0, Plane{{1, 0, 0}, -10}, {0, 0, 0});  // far wall on plane 1's body: no pairs
+  EXPECT_EQ(f.run(), (Pairs{{1, 2}, {1, 4}}));
+}
+
+TEST(BroadPhase, RemovedCollidersLeaveTheTree) {
+  Fixture f;
+  f.add(1, 1, Box{}, {0, 0, 0});
+  f.add(2, 2, Box{}, {0.9, 0, 0});
+  EXPECT_EQ(f.run().size(), 1u);
+  f.colliders.pop_back();
+  f.poses.pop_back();
+  EXPECT_TRUE(f.run().empty());
+}
+
+}  // namespace
+}  // namespace coulomb::geometry
