@@ -35,7 +35,8 @@ std::vector<CandidatePair> BroadPhase::update(const std::vector<Collider>& colli
     if (!indexOf.count(id)) scene.erase(id);
   scene.updateTree();
 
-  std::vector<std::pair<ColliderId, ColliderId>> ids = scene.overlappingPairs();
+  std::vector<std::pair<ColliderId, ColliderId>> ids = scene.overlappingPairs();  // sorted
+  const auto treePairs = static_cast<std::ptrdiff_t>(ids.size());
   // Planes: one AABB-against-half-space test per solid (cheap; the tree cannot hold planes).
   for (std::size_t p : planes) {
     const WorldPlane plane = toWorld(std::get<Plane>(*colliders[p].shape), shapePoses[p]);
@@ -48,7 +49,8 @@ std::vector<CandidatePair> BroadPhase::update(const std::vector<Collider>& colli
                          std::max(colliders[p].id, colliders[s].id));
     }
   }
-  std::sort(ids.begin(), ids.end());
+  std::sort(ids.begin() + treePairs, ids.end());
+  std::inplace_merge(ids.begin(), ids.begin() + treePairs, ids.end());
   std::vector<CandidatePair> pairs;
   pairs.reserve(ids.size());
   for (const auto& [ia, ib] : ids) {

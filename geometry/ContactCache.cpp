@@ -48,7 +48,8 @@ void carryOver(const ContactManifold& old, ContactManifold& fresh, std::span<con
 
 const std::vector<ContactManifold>& ContactCache::refresh(std::vector<ContactManifold> fresh,
                                                           std::span<const Pose> bodyPoses) {
-  std::sort(fresh.begin(), fresh.end(), byColliders);
+  if (!std::is_sorted(fresh.begin(), fresh.end(), byColliders))  // NarrowPhase output already is
+    std::sort(fresh.begin(), fresh.end(), byColliders);
   auto old = manifolds_.begin();
   for (ContactManifold& m : fresh) {
     old = std::lower_bound(old, manifolds_.end(), m, byColliders);

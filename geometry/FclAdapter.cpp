@@ -1,7 +1,7 @@
 // The only translation unit that includes FCL (ARCHITECTURE.md section 1). Facts relied on are
 // in FCL-NOTES.md: GST_LIBCCD always (section 3), meshes first with the normal re-oriented
 // (4.1), abs() of sphere-triangle depth (4.2), zero normals dropped (4.3), halfspaces kept out of
-// the tree (4.8), AABB margin by growing aabb_local/aabb_radius (6), every call wrapped (4.12).
+// the tree (4.8), own tight + fattened AABBs (4.9, 6), every call wrapped (4.12).
 #include <coulomb/geometry/FclAdapter.hpp>
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
@@ -84,6 +84,37 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Shape& shape, const 
       shape);
 }
 
+// FCL's CollisionObject keeps its world AABB in a protected member; the tree reads it from there.
+// Setting it directly lets Coulomb give rotated primitives a tight box (FCL's own is the
+// bounding-sphere cube, FCL-NOTES.md 4.9) and keep a fattened one while a body rests.
+class TreeObject : public fcl::CollisionObjectd {
+ public:
+  using fcl::CollisionObjectd::CollisionObjectd;
+  void setAabb(const fcl::AABBd& box) { aabb = box; }
+};
+
+// Tight world AABB of primitives (half-widths from the rotated extents); FCL's for hulls/meshes.
+fcl::AABBd tightAabb(const Shape& shape, TreeObject& object) {
+  const fcl::Transform3d& tf = object.getTransform();
+  const Eigen::Matrix3d abs = tf.linear().cwiseAbs();
+  const Eigen::Vector3d axis = tf.linear().col(2);
+  Eigen::Vector3d half;
+  if (const auto* box = std::get_if<Box>(&shape)) {
+    half = abs * box->halfExtents;
+  } else if (const auto* sphere = std::get_if<Sphere>(&shape)) {
+    half.setConstant(sphere->radius);
+  } else if (const auto* capsule = std::get_if<Capsule>(&shape)) {
+    half = capsule->halfLength * axis.cwiseAbs() + Eigen::Vector3d::Constant(capsule->radius);
+  } else if (const auto* cylinder = std::get_if<Cylinder>(&shape)) {
+    const Eigen::Vector3d across = (Eigen::Vector3d::Ones() - axis.cwiseAbs2()).cwiseMax(0.0);
+    half = cylinder->halfLength * axis.cwiseAbs() + cylinder->radius * across.cwiseSqrt();
+  } else {
+    object.computeAABB();  // forgetting it leaves a stale AABB (fcl#40)
+    return object.getAABB();
+  }
+  return fcl::AABBd(tf.translation() - half, tf.translation() + half);
+}
+
 bool finite(const fcl::Contactd& c) {
   return c.normal.allFinite() && c.pos.allFinite() && std::isfinite(c.penetration_depth);
 }
@@ -95,7 +126,9 @@ struct FclScene::Impl {
     ColliderId id;
     std::shared_ptr<const Shape> shape;
     std::shared_ptr<fcl::CollisionGeometryd> geometry;
-    std::unique_ptr<fcl::CollisionObjectd> object;
+    std::unique_ptr<TreeObject> object;
+    fcl::AABBd fat;  // what the tree holds: the tight AABB grown by margin + slack
+    bool hasFat = false;
     bool isPlane = false;
     bool isMesh = false;
   };
@@ -103,19 +136,28 @@ struct FclScene::Impl {
   double margin = 0.0;
   std::map<ColliderId, std::unique_ptr<Entry>> entries;  // unique_ptr: stable user-data address
   fcl::DynamicAABBTreeCollisionManagerd manager;
+  std::vector<fcl::CollisionObjectd*> moved;  // left their fat AABB since the last updateTree
 
-  const Entry& at(ColliderId id) const {
+  Entry& at(ColliderId id) const {
     auto it = entries.find(id);
     if (it == entries.end()) throw std::out_of_range("FclScene: unknown " + name(id));
-    return *it->second;
+    return *it->second;  // the map holds unique_ptrs: the entry itself is not const
   }
 
-  // FCL has no AABB margin: grow the geometry's local box and radius (FCL-NOTES.md section 6).
-  void fatten(fcl::CollisionGeometryd& g) const {
-    if (margin <= 0.0) return;
-    g.aabb_local.min_ -= fcl::Vector3d::Constant(margin);
-    g.aabb_local.max_ += fcl::Vector3d::Constant(margin);
-    g.aabb_radius += margin;
+  // The tree re-inserts a leaf whenever its box changes at all (FCL-NOTES.md 6), so each leaf
+  // holds a box fattened by `slack` beyond the margin, replaced only when the shape leaves it
+  // (Box2D's b2_aabbMargin idea). A resting body then costs no tree work.
+  void place(Entry& entry) {
+    const fcl::AABBd tight = tightAabb(*entry.shape, *entry.object);
+    const fcl::Vector3d grow = fcl::Vector3d::Constant(margin);
+    const fcl::AABBd needed(tight.min_ - grow, tight.max_ + grow);
+    if (!entry.hasFat || !entry.fat.contain(needed)) {
+      const fcl::Vector3d slack = fcl::Vector3d::Constant(2.0 * margin + 1e-4);
+      entry.fat = fcl::AABBd(needed.min_ - slack, needed.max_ + slack);
+      entry.hasFat = true;
+      if (!entry.isPlane) moved.push_back(entry.object.get());
+    }
+    entry.object->setAabb(entry.fat);
   }
 };
 
@@ -146,10 +188,9 @@ void FclScene::upsert(ColliderId id, const std::shared_ptr<const Shape>& shape) 
     throw std::invalid_argument(who + ": FCL rejected the " + shapeKindName(*shape) + ": " +
                                 e.what());
   }
-  entry->object = std::make_unique<fcl::CollisionObjectd>(entry->geometry);
-  impl_->fatten(*entry->geometry);
-  entry->object->computeAABB();
+  entry->object = std::make_unique<TreeObject>(entry->geometry);
   entry->object->setUserData(entry.get());
+  impl_->place(*entry);
 
   erase(id);
   if (!entry->isPlane) impl_->manager.registerObject(entry->object.get());
@@ -159,7 +200,10 @@ void FclScene::upsert(ColliderId id, const std::shared_ptr<const Shape>& shape) 
 void FclScene::erase(ColliderId id) {
   auto it = impl_->entries.find(id);
   if (it == impl_->entries.end()) return;
-  if (!it->second->isPlane) impl_->manager.unregisterObject(it->second->object.get());
+  fcl::CollisionObjectd* object = it->second->object.get();
+  if (!it->second->isPlane) impl_->manager.unregisterObject(object);
+  auto& moved = impl_->moved;
+  moved.erase(std::remove(moved.begin(), moved.end(), object), moved.end());
   impl_->entries.erase(it);
 }
 
@@ -177,16 +221,17 @@ std::vector<ColliderId> FclScene::ids() const {
 void FclScene::setPose(ColliderId id, const Pose& worldPose) {
   if (!worldPose.allFinite())
     throw std::invalid_argument(name(id) + ": world pose is not finite (NaN or inf)");
-  const Impl::Entry& entry = impl_->at(id);
+  Impl::Entry& entry = impl_->at(id);
   fcl::Transform3d transform = fcl::Transform3d::Identity();
   transform.linear() = worldPose.rotation.normalized().toRotationMatrix();  // fcl#567
   transform.translation() = worldPose.position;
   entry.object->setTransform(transform);
-  entry.object->computeAABB();  // forgetting it leaves a stale AABB (fcl#40)
+  impl_->place(entry);
 }
 
 void FclScene::updateTree() {
-  impl_->manager.update();
+  impl_->manager.update(impl_->moved);  // only the leaves that left their fat box; no rebalance
+  impl_->moved.clear();                 // of the whole tree when nothing moved
 }
 
 std::vector<std::pair<ColliderId, ColliderId>> FclScene::overlappingPairs() const {
