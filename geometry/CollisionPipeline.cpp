@@ -95,7 +95,7 @@ const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Co
   diagnostics_.stats.touchingPairs = fresh_.size();
   for (const ContactManifold& m : fresh_)
     diagnostics_.stats.contactPoints += static_cast<std::size_t>(m.pointCount);
-  return cache_.refresh(std::move(fresh_), bodyPoses);
+  return cache_.refresh(fresh_, bodyPoses);  // fresh_ gets the old buffer back for next step
 }
 
 }  // namespace coulomb::geometry

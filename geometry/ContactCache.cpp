@@ -46,7 +46,7 @@ void carryOver(const ContactManifold& old, ContactManifold& fresh, std::span<con
 
 }  // namespace
 
-const std::vector<ContactManifold>& ContactCache::refresh(std::vector<ContactManifold> fresh,
+const std::vector<ContactManifold>& ContactCache::refresh(std::vector<ContactManifold>& fresh,
                                                           std::span<const Pose> bodyPoses) {
   if (!std::is_sorted(fresh.begin(), fresh.end(), byColliders))  // NarrowPhase output already is
     std::sort(fresh.begin(), fresh.end(), byColliders);
@@ -56,7 +56,7 @@ const std::vector<ContactManifold>& ContactCache::refresh(std::vector<ContactMan
     if (old != manifolds_.end() && old->colliderA == m.colliderA && old->colliderB == m.colliderB)
       carryOver(*old, m, bodyPoses, settings_);
   }
-  manifolds_ = std::move(fresh);
+  manifolds_.swap(fresh);
   return manifolds_;
 }
 
