@@ -39,12 +39,13 @@ void checkVector(const Failure& fail, const char* what, const Eigen::Vector3d& v
 
 void checkPose(const Failure& fail, const std::string& what, const geometry::Pose& pose,
                double tolerance) {
-  checkVector(fail, (what + ".position").c_str(), pose.position);
-  if (!pose.rotation.coeffs().allFinite()) fail(what + ".orientation is not finite");
+  const std::string prefix = what.empty() ? what : what + ".";
+  checkVector(fail, (prefix + "position").c_str(), pose.position);
+  if (!pose.rotation.coeffs().allFinite()) fail(prefix + "orientation is not finite");
   const double norm = pose.rotation.norm();
   if (std::abs(norm - 1.0) > tolerance) {
     std::ostringstream out;
-    out << what << ".orientation must be a unit quaternion (norm " << norm << ")";
+    out << prefix << "orientation must be a unit quaternion (norm " << norm << ")";
     fail(out.str());
   }
 }
@@ -65,7 +66,7 @@ geometry::Pose normalised(geometry::Pose pose) {
 
 ResolvedBody resolveBody(const BodyDesc& desc, const WorldSettings& settings) {
   const Failure fail(desc);
-  checkPose(fail, "pose", desc.pose, settings.unitQuaternionTolerance);
+  checkPose(fail, "", desc.pose, settings.unitQuaternionTolerance);
   checkVector(fail, "linear_velocity", desc.linearVelocity);
   checkVector(fail, "angular_velocity", desc.angularVelocity);
   const bool dynamic = desc.motionType == MotionType::Dynamic;

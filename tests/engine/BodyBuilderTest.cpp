@@ -60,9 +60,9 @@ TEST(BodyBuilder, ValidBodyResolves) {
 
 TEST(BodyBuilder, NonFinitePose) {
   expectRejected(modified([](BodyDesc& d) { d.pose.position.y() = NAN; }),
-                 {"crate", "pose.position[1]", "not finite"});
+                 {"crate", "position[1]", "not finite"});
   expectRejected(modified([](BodyDesc& d) { d.pose.rotation.coeffs()[0] = INFINITY; }),
-                 {"pose.orientation", "not finite"});
+                 {"orientation", "not finite"});
   expectRejected(modified([](BodyDesc& d) { d.pose.rotation.coeffs() *= 2.0; }),
                  {"unit quaternion", "norm 2"});
 }

@@ -1,0 +1,37 @@
+#pragma once
+// JSON scenes (docs/scene-format.md): bodies, shapes, materials, gravity, time step and step
+// count, with reserved sections (joints, solver, urdf) that later issues fill. Every error is a
+// CoulombError "<file>: <JSON path>: <problem>", e.g. "drop.json: bodies[3].mass: must be > 0".
+#include <coulomb/engine/BodyDesc.hpp>
+#include <coulomb/engine/World.hpp>
+#include <coulomb/engine/WorldSettings.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace coulomb::engine::io {
+
+struct Scene {
+  std::string name;         // "name" key, else the file stem
+  std::string description;  // free text
+  std::string source;       // where it came from (file path or "built-in scene 'x'"), for messages
+  WorldSettings settings;   // gravity and time step
+  std::uint64_t steps = 1000;
+  std::vector<BodyDesc> bodies;
+};
+
+/// Reads and parses a scene file; mesh file paths are relative to the file's folder.
+Scene loadSceneFile(const std::filesystem::path& file);
+
+/// Parses scene text. `source` names it in messages; `baseDirectory` resolves mesh file paths.
+Scene parseScene(std::string_view text, const std::string& source,
+                 const std::filesystem::path& baseDirectory = {});
+
+/// A World holding the scene's bodies (in file order: body i gets slot i). Creation errors are
+/// reported as "<source>: bodies[i]...".
+World buildWorld(const Scene& scene);
+
+}  // namespace coulomb::engine::io
