@@ -163,6 +163,10 @@ void NarrowPhase::collide(std::span<const CandidatePair> pairs,
   for (const CandidatePair& pair : pairs) {
     const Collider& a = colliders[pair.a];
     const Collider& b = colliders[pair.b];
+    if (a.body.index >= bodyPoses.size() || b.body.index >= bodyPoses.size()) {
+      failures.push_back({a.id, b.id, "body index out of range of the body poses"});
+      continue;
+    }
     const bool touching =
         contactPair(a, shapePoses[pair.a], b, shapePoses[pair.b], scene, scratch_, error);
     if (!error.empty()) {

@@ -134,7 +134,9 @@ TEST(NarrowPhase, FailingPairIsReportedAndOthersGoOn) {
   const std::vector<CandidatePair> pairs{{0, 1}, {2, 3}};
   std::vector<ContactManifold> out;
   std::vector<CollisionFailure> failures;
-  narrow.collide(pairs, colliders, poses, poses, scene, out, failures);
+  std::vector<Pose> bodyPoses{Pose::identity()};  // bodies are numbered like the colliders: 1..4
+  bodyPoses.insert(bodyPoses.end(), poses.begin(), poses.end());
+  narrow.collide(pairs, colliders, poses, bodyPoses, scene, out, failures);
   ASSERT_EQ(failures.size(), 1u);
   EXPECT_EQ(failures[0].a.index, 1u);
   EXPECT_NE(failures[0].message.find("libccd blew up"), std::string::npos);
