@@ -1,6 +1,148 @@
-// Placeholder until the solvers land (issue 5): `coulomb solvers` and `coulomb solve`.
+// `coulomb solvers` (the registry, one line each) and `coulomb solve FILE.fc3d` (one JSON line per
+// solver: problem, contacts, solver, status, iterations, seconds, common residual).
+#include <coulomb/solvers/SolverRegistry.hpp>
+#include <coulomb/solvers/io/Fc3dText.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "Commands.hpp"
 
 namespace coulomb::cli {
-void registerSolverCommands(CLI::App& /*app*/) {}
+
+namespace {
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char b[8];
+          std::snprintf(b, sizeof b, "\\u%04x", c);
+          out += b;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string jsonNumber(double v) {
+  if (!std::isfinite(v)) return "null";  // JSON has no inf/nan (never expected for residuals)
+  char b[64];
+  const auto res = std::to_chars(b, b + sizeof b, v);
+  return std::string(b, res.ptr);
+}
+
+struct SolveArgs {
+  std::string file;
+  std::string solver = "all";
+  double tolerance = 1e-8;
+  int maxIterations = 0;
+  double timeLimit = 60.0;
+  std::string solutionPath;
+};
+
+void runSolve(const SolveArgs& a) {
+  const solvers::Fc3dReadResult read = solvers::readFc3dText(a.file);
+  if (!read.problem)
+    throw CommandError(read.error + "\n  (format: fc3d-text 1, see docs/solvers.md)");
+  const solvers::ContactProblem& problem = *read.problem;
+  const solvers::SolverRegistry registry = solvers::SolverRegistry::builtIn();
+  std::vector<std::string> names;
+  if (a.solver == "all") {
+    names = registry.names();
+  } else if (registry.find(a.solver)) {
+    names.push_back(a.solver);
+  } else {
+    std::string known;
+    for (const std::string& n : registry.names()) known += " " + n;
+    throw CommandError("unknown solver '" + a.solver + "'; known:" + known + " (or all)");
+  }
+  solvers::SolverOptions options;
+  options.tolerance = a.tolerance;
+  options.maxIterations = a.maxIterations;
+  options.timeLimitSeconds = a.timeLimit;
+  if (auto bad = solvers::validateOptions(options)) throw CommandError("bad option: " + *bad);
+  Eigen::VectorXd bestR;
+  double bestResidual = std::numeric_limits<double>::infinity();
+  for (const std::string& name : names) {
+    const solvers::SolveOutcome out = registry.create(name)->solve(problem, options);
+    const solvers::SolverReport& r = out.report;
+    std::cout << "{\"problem\":" << jsonString(problem.name)
+              << ",\"contacts\":" << problem.contactCount() << ",\"solver\":" << jsonString(name)
+              << ",\"status\":" << jsonString(solvers::statusName(r.status))
+              << ",\"iterations\":" << r.iterations << ",\"seconds\":" << jsonNumber(r.seconds)
+              << ",\"residual\":" << jsonNumber(r.residual) << "}" << std::endl;
+    if (r.status == solvers::SolverStatus::InvalidProblem)
+      throw CommandError(a.file + ": invalid problem: " + r.message);
+    if (bestR.size() == 0 || r.residual < bestResidual) {
+      bestResidual = r.residual;
+      bestR = out.impulses;
+    }
+  }
+  if (!a.solutionPath.empty()) {
+    std::ofstream f(a.solutionPath);
+    if (!f) throw CommandError(a.solutionPath + ": cannot write the solution file");
+    solvers::writeVector(bestR, f);
+    if (!f) throw CommandError(a.solutionPath + ": write failed");
+  }
+}
+
+}  // namespace
+
+void registerSolverCommands(CLI::App& app) {
+  app.add_subcommand("solvers", "List the contact solvers of the registry, one line each")
+      ->callback([] {
+        const solvers::SolverRegistry registry = solvers::SolverRegistry::builtIn();
+        for (const solvers::SolverEntry& e : registry.entries())
+          std::cout << e.name << "\t" << e.summary << "\n";
+      });
+
+  auto args = std::make_shared<SolveArgs>();
+  CLI::App* solve = app.add_subcommand(
+      "solve",
+      "Solve a frictional contact problem (fc3d-text file) with one or all solvers; "
+      "prints one JSON line per solver");
+  solve->add_option("file", args->file, "problem file in the fc3d-text 1 format")->required();
+  solve->add_option("--solver", args->solver, "solver name (see `coulomb solvers`) or all")
+      ->capture_default_str();
+  solve->add_option("--tol", args->tolerance, "tolerance on the common relative residual")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  solve
+      ->add_option("--max-iter", args->maxIterations,
+                   "iteration budget (Newton steps or sweeps); 0 = each solver's default")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  solve->add_option("--time-limit", args->timeLimit, "wall-clock limit per solver [s]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  solve->add_option("--solution", args->solutionPath,
+                    "write r (3 numbers per contact) of the solver with the smallest residual");
+  solve->callback([args] { runSolve(*args); });
+}
+
 }  // namespace coulomb::cli

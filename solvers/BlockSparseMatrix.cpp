@@ -1,0 +1,133 @@
+#include <coulomb/solvers/BlockSparseMatrix.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace coulomb::solvers {
+
+BlockSparseMatrix::BlockSparseMatrix(std::vector<int> blockSizes,
+                                     std::vector<MatrixBlockEntry> entries)
+    : blockSize_(std::move(blockSizes)) {
+  const int nb = blockCount();
+  blockOffset_.assign(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) {
+    if (blockSize_[b] < 1 || blockSize_[b] > 3)
+      throw std::invalid_argument("block " + std::to_string(b) + " has size " +
+                                  std::to_string(blockSize_[b]) + ", expected 1, 2 or 3");
+    blockOffset_[b + 1] = blockOffset_[b] + blockSize_[b];
+  }
+  for (const MatrixBlockEntry& e : entries) {
+    if (e.row < 0 || e.row >= nb || e.col < 0 || e.col >= nb)
+      throw std::invalid_argument("block (" + std::to_string(e.row) + ", " + std::to_string(e.col) +
+                                  ") outside " + std::to_string(nb) + " blocks");
+    if (static_cast<int>(e.values.size()) != blockSize_[e.row] * blockSize_[e.col])
+      throw std::invalid_argument("block (" + std::to_string(e.row) + ", " + std::to_string(e.col) +
+                                  ") has " + std::to_string(e.values.size()) + " values");
+  }
+  std::vector<int> order(entries.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return entries[a].row != entries[b].row ? entries[a].row < entries[b].row
+                                            : entries[a].col < entries[b].col;
+  });
+  rowStart_.assign(nb + 1, 0);
+  diagonal_.assign(nb, -1);
+  for (size_t idx = 0; idx < order.size(); ++idx) {
+    const MatrixBlockEntry& e = entries[order[idx]];
+    const bool same = !col_.empty() && idx > 0 && entries[order[idx - 1]].row == e.row &&
+                      entries[order[idx - 1]].col == e.col;
+    if (same) {  // duplicate block: sum
+      double* v = values_.data() + valueStart_.back();
+      for (size_t t = 0; t < e.values.size(); ++t) v[t] += e.values[t];
+      continue;
+    }
+    col_.push_back(e.col);
+    valueStart_.push_back(static_cast<int>(values_.size()));
+    values_.insert(values_.end(), e.values.begin(), e.values.end());
+    ++rowStart_[e.row + 1];
+    if (e.row == e.col) diagonal_[e.row] = static_cast<int>(col_.size()) - 1;
+  }
+  for (int b = 0; b < nb; ++b) rowStart_[b + 1] += rowStart_[b];
+}
+
+void BlockSparseMatrix::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const int nb = blockCount();
+  for (int i = 0; i < nb; ++i) {
+    const int ri = blockOffset_[i], si = blockSize_[i];
+    for (int k = rowStart_[i]; k < rowStart_[i + 1]; ++k) {
+      const int cj = blockOffset_[col_[k]], sj = blockSize_[col_[k]];
+      const double* v = values_.data() + valueStart_[k];
+      for (int a = 0; a < si; ++a)
+        for (int c = 0; c < sj; ++c) y[ri + a] += v[sj * a + c] * x[cj + c];
+    }
+  }
+}
+
+void BlockSparseMatrix::multiplyTransposeAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  for (int i = 0; i < blockCount(); ++i) {
+    const int ri = blockOffset_[i], si = blockSize_[i];
+    for (int k = rowStart_[i]; k < rowStart_[i + 1]; ++k) {
+      const int cj = blockOffset_[col_[k]], sj = blockSize_[col_[k]];
+      const double* v = values_.data() + valueStart_[k];
+      for (int a = 0; a < si; ++a)
+        for (int c = 0; c < sj; ++c) y[cj + c] += v[sj * a + c] * x[ri + a];
+    }
+  }
+}
+
+void BlockSparseMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  y.setZero(size());
+  multiplyAdd(x, y);
+}
+
+Eigen::MatrixXd BlockSparseMatrix::toDense() const {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(size(), size());
+  for (int i = 0; i < blockCount(); ++i)
+    for (int k = rowStart_[i]; k < rowStart_[i + 1]; ++k) {
+      const int j = col_[k], sj = blockSize_[j];
+      for (int a = 0; a < blockSize_[i]; ++a)
+        for (int c = 0; c < sj; ++c)
+          A(blockOffset_[i] + a, blockOffset_[j] + c) = values_[valueStart_[k] + sj * a + c];
+    }
+  return A;
+}
+
+Eigen::SparseMatrix<double> BlockSparseMatrix::toSparse() const {
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(values_.size());
+  for (int i = 0; i < blockCount(); ++i)
+    for (int k = rowStart_[i]; k < rowStart_[i + 1]; ++k) {
+      const int j = col_[k], sj = blockSize_[j];
+      for (int a = 0; a < blockSize_[i]; ++a)
+        for (int c = 0; c < sj; ++c)
+          t.emplace_back(blockOffset_[i] + a, blockOffset_[j] + c,
+                         values_[valueStart_[k] + sj * a + c]);
+    }
+  Eigen::SparseMatrix<double> A(size(), size());
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+BlockSparseMatrix BlockSparseMatrix::scaledSymmetric(const Eigen::VectorXd& scale) const {
+  BlockSparseMatrix out = *this;
+  for (int i = 0; i < blockCount(); ++i)
+    for (int k = rowStart_[i]; k < rowStart_[i + 1]; ++k) {
+      const int j = col_[k], sj = blockSize_[j];
+      double* v = out.values_.data() + valueStart_[k];
+      for (int a = 0; a < blockSize_[i]; ++a)
+        for (int c = 0; c < sj; ++c)
+          v[sj * a + c] *= scale[blockOffset_[i] + a] * scale[blockOffset_[j] + c];
+    }
+  return out;
+}
+
+void BlockSparseMatrix::addToDiagonal(double s) {
+  for (int b = 0; b < blockCount(); ++b) {
+    if (diagonal_[b] < 0) throw std::logic_error("addToDiagonal: missing diagonal block");
+    double* v = values_.data() + valueStart_[diagonal_[b]];
+    for (int a = 0; a < blockSize_[b]; ++a) v[(blockSize_[b] + 1) * a] += s;
+  }
+}
+
+}  // namespace coulomb::solvers

@@ -1,0 +1,185 @@
+#include <coulomb/solvers/ContactProblem.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace coulomb::solvers {
+
+const char* blockKindName(BlockKind kind) {
+  switch (kind) {
+    case BlockKind::Equality:
+      return "equality";
+    case BlockKind::Bounded:
+      return "bounded";
+    case BlockKind::Unilateral:
+      return "unilateral";
+    case BlockKind::Contact3D:
+      return "contact";
+  }
+  return "?";
+}
+
+ContactProblem ContactProblem::contacts(DelassusOperator W, Eigen::VectorXd q,
+                                        const std::vector<double>& mu, std::string name) {
+  ContactProblem p;
+  p.name = std::move(name);
+  p.W = std::move(W);
+  p.q = std::move(q);
+  p.blocks.reserve(mu.size());
+  for (double m : mu) p.blocks.push_back(ConstraintBlock::contact(m));
+  return p;
+}
+
+int ContactProblem::size() const {
+  int n = 0;
+  for (const ConstraintBlock& b : blocks) n += b.size();
+  return n;
+}
+
+int ContactProblem::contactCount() const {
+  int n = 0;
+  for (const ConstraintBlock& b : blocks) n += b.isContact() ? 1 : 0;
+  return n;
+}
+
+std::vector<int> ContactProblem::blockSizes() const {
+  std::vector<int> s;
+  s.reserve(blocks.size());
+  for (const ConstraintBlock& b : blocks) s.push_back(b.size());
+  return s;
+}
+
+std::vector<int> ContactProblem::blockOffsets() const {
+  std::vector<int> o(blocks.size() + 1, 0);
+  for (size_t b = 0; b < blocks.size(); ++b) o[b + 1] = o[b] + blocks[b].size();
+  return o;
+}
+
+namespace {
+
+std::string where(const std::vector<ConstraintBlock>& blocks, const std::vector<int>& offset,
+                  int row) {
+  size_t b = 0;
+  while (b + 1 < blocks.size() && offset[b + 1] <= row) ++b;
+  std::ostringstream s;
+  s << "row " << row << " (block " << b << ", " << blockKindName(blocks[b].kind);
+  if (blocks[b].isContact())
+    s << " component "
+      << "NTT"[row - offset[b]];
+  s << ")";
+  return s.str();
+}
+
+}  // namespace
+
+std::optional<std::string> ContactProblem::validate() const {
+  const int n = size();
+  const std::vector<int> offset = blockOffsets();
+  std::ostringstream msg;
+  if (W.rows() != W.cols()) {
+    msg << "W is " << W.rows() << " x " << W.cols() << ", not square";
+    return msg.str();
+  }
+  if (W.rows() != n) {
+    msg << "W is " << W.rows() << " x " << W.cols() << " but the blocks have " << n << " unknowns";
+    return msg.str();
+  }
+  if (q.size() != n) {
+    msg << "q has " << q.size() << " entries, expected " << n;
+    return msg.str();
+  }
+  if (warmStart && warmStart->size() != n) {
+    msg << "warm start has " << warmStart->size() << " entries, expected " << n;
+    return msg.str();
+  }
+  if (const BlockSparseMatrix* s = W.blockSparseMatrix(); s && s->blockSizes() != blockSizes())
+    return std::string("the block partition of W differs from the problem's blocks");
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const ConstraintBlock& k = blocks[b];
+    std::ostringstream at;
+    at << "block " << b << " (" << blockKindName(k.kind) << ")";
+    if (k.isContact()) {
+      const double m[3] = {k.mu, k.mu1, k.mu2};
+      const char* names[3] = {"mu", "mu1", "mu2"};
+      for (int t = 0; t < 3; ++t) {
+        if (t > 0 && !k.anisotropic) break;
+        if (!std::isfinite(m[t])) return at.str() + ": " + names[t] + " is not finite";
+        if (m[t] < 0) {
+          msg << at.str() << ": " << names[t] << " = " << m[t] << " < 0";
+          return msg.str();
+        }
+      }
+    }
+    if (k.kind == BlockKind::Bounded) {
+      if (std::isnan(k.lower) || std::isnan(k.upper) || k.lower > k.upper) {
+        msg << at.str() << ": bounds [" << k.lower << ", " << k.upper << "] are not an interval";
+        return msg.str();
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(q[i])) return "q at " + where(blocks, offset, i) + " is not finite";
+  if (warmStart)
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite((*warmStart)[i]))
+        return "warm start at " + where(blocks, offset, i) + " is not finite";
+  // Entries of W: non-finite anywhere (stored), diagonal positive.
+  auto diagonalOk = [&](int row, double w) -> std::optional<std::string> {
+    size_t b = 0;
+    while (b + 1 < blocks.size() && offset[b + 1] <= row) ++b;
+    const bool frictionlessTangent =
+        blocks[b].isContact() && row != offset[b] &&
+        (blocks[b].anisotropic ? (row - offset[b] == 1 ? blocks[b].mu1 : blocks[b].mu2)
+                               : blocks[b].mu) == 0.0;
+    if (frictionlessTangent ? w < 0 : !(w > 0)) {
+      std::ostringstream s;
+      s << "W diagonal at " << where(blocks, offset, row) << " is " << w
+        << ", must be positive (W block not positive on its diagonal)";
+      return s.str();
+    }
+    return std::nullopt;
+  };
+  if (const Eigen::MatrixXd* d = W.denseMatrix()) {
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (!std::isfinite((*d)(i, j))) {
+          msg << "W(" << i << ", " << j << ") is not finite, at " << where(blocks, offset, i);
+          return msg.str();
+        }
+    for (int i = 0; i < n; ++i)
+      if (auto e = diagonalOk(i, (*d)(i, i))) return e;
+  } else if (const BlockSparseMatrix* s = W.blockSparseMatrix()) {
+    for (int b = 0; b < s->blockCount(); ++b)
+      for (int k = s->rowBegin(b); k < s->rowEnd(b); ++k) {
+        const int c = s->blockColumn(k), sb = s->blockSize(b), sc = s->blockSize(c);
+        for (int t = 0; t < sb * sc; ++t)
+          if (!std::isfinite(s->blockValues(k)[t])) {
+            msg << "W(" << s->blockOffset(b) + t / sc << ", " << s->blockOffset(c) + t % sc
+                << ") is not finite, at " << where(blocks, offset, s->blockOffset(b) + t / sc);
+            return msg.str();
+          }
+      }
+    for (int b = 0; b < s->blockCount(); ++b) {
+      if (s->diagonalBlock(b) < 0) {
+        msg << "W has no diagonal block for block " << b;
+        return msg.str();
+      }
+      const double* v = s->blockValues(s->diagonalBlock(b));
+      for (int a = 0; a < s->blockSize(b); ++a)
+        if (auto e = diagonalOk(s->blockOffset(b) + a, v[(s->blockSize(b) + 1) * a])) return e;
+    }
+  } else {
+    for (int i = 0; i < n; ++i) {
+      const Eigen::VectorXd col = W.column(i);
+      for (int r = 0; r < n; ++r)
+        if (!std::isfinite(col[r])) {
+          msg << "W(" << r << ", " << i << ") is not finite, at " << where(blocks, offset, r);
+          return msg.str();
+        }
+      if (auto e = diagonalOk(i, col[i])) return e;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace coulomb::solvers

@@ -1,0 +1,52 @@
+#pragma once
+// The interface of every contact solver. solve() is the same for all of them (non-virtual):
+// validate the options and the problem, return at once when there is nothing to do, prepare the
+// problem, choose the start (warm start or 0, whichever has the smaller residual), run the
+// algorithm, then measure the common residual after the last update on the original problem and
+// guarantee a finite answer (a numerical failure is a status, never a NaN).
+// A solver implements solvePrepared(); composite solvers (hybrid starts, fallbacks) call other
+// solvers' solvePrepared() on the same PreparedProblem.
+#include <coulomb/solvers/ContactProblem.hpp>
+#include <coulomb/solvers/PreparedProblem.hpp>
+#include <coulomb/solvers/SolverOptions.hpp>
+#include <coulomb/solvers/SolverReport.hpp>
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+
+namespace coulomb::solvers {
+
+struct SolveOutcome {
+  Eigen::VectorXd impulses;    // r, problem.size() entries, always finite
+  Eigen::VectorXd velocities;  // u = W r + q
+  SolverReport report;
+};
+
+class ContactSolver {
+ public:
+  virtual ~ContactSolver() = default;
+  [[nodiscard]] virtual std::string name() const = 0;
+  // Why this solver cannot take the problem (e.g. unsupported block kinds), or nullopt.
+  [[nodiscard]] virtual std::optional<std::string> notApplicable(const ContactProblem&) const {
+    return std::nullopt;
+  }
+
+  [[nodiscard]] SolveOutcome solve(const ContactProblem& problem,
+                                   const SolverOptions& options = {}) const;
+  // Same, starting from `start` (original variables) instead of the problem's warm start.
+  [[nodiscard]] SolveOutcome solve(const ContactProblem& problem, const SolverOptions& options,
+                                   const Eigen::VectorXd& start) const;
+
+  // The algorithm. On entry r is a feasible start (prepared variables); on exit the best iterate
+  // found, finite. Sets status, iterations, native residual and notes; solve() does the rest.
+  virtual void solvePrepared(const PreparedProblem& problem, const SolveContext& context,
+                             Eigen::VectorXd& r, SolverReport& report) const = 0;
+
+ private:
+  SolveOutcome run(const ContactProblem& problem, const SolverOptions& options,
+                   const Eigen::VectorXd* start) const;
+};
+
+}  // namespace coulomb::solvers

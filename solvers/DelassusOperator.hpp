@@ -1,0 +1,48 @@
+#pragma once
+// The Delassus operator W of a contact problem (u = W r + q, SOLVERS.md (1.1)) behind one type:
+// dense, block-sparse (blocks of 1 or 3 rows, see BlockSparseMatrix) or matrix-free (a function
+// computing W x, e.g. through body velocities u = J M^-1 J^T x). Solvers that need entries ask for
+// toBlockSparse(); for a matrix-free operator that costs one product per unknown.
+#include <coulomb/solvers/BlockSparseMatrix.hpp>
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <memory>
+
+namespace coulomb::solvers {
+
+class DelassusOperator {
+ public:
+  enum class Storage { Dense, BlockSparse, MatrixFree };
+  // y = W x; y has the right size on entry.
+  using Product = std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& y)>;
+
+  DelassusOperator();  // empty 0 x 0 (dense)
+  static DelassusOperator dense(Eigen::MatrixXd W);
+  static DelassusOperator blockSparse(BlockSparseMatrix W);
+  static DelassusOperator matrixFree(int size, Product product);
+
+  [[nodiscard]] Storage storage() const { return storage_; }
+  [[nodiscard]] int rows() const;
+  [[nodiscard]] int cols() const;
+  [[nodiscard]] const Eigen::MatrixXd* denseMatrix() const;
+  [[nodiscard]] const BlockSparseMatrix* blockSparseMatrix() const;
+
+  // u = W x + q. For block-sparse storage the summation order is that of fc3d_velocity.
+  void velocity(const Eigen::VectorXd& x, const Eigen::VectorXd& q, Eigen::VectorXd& u) const;
+  // W restricted to the partition `blockSizes` (sum = rows()); exact zero blocks are dropped,
+  // diagonal blocks always kept.
+  [[nodiscard]] BlockSparseMatrix toBlockSparse(const std::vector<int>& blockSizes) const;
+  // Column j of W (dense: a copy; block-sparse: gathered; matrix-free: one product).
+  [[nodiscard]] Eigen::VectorXd column(int j) const;
+
+ private:
+  Storage storage_ = Storage::Dense;
+  std::shared_ptr<const Eigen::MatrixXd> dense_;  // shared: problems are copied cheaply
+  std::shared_ptr<const BlockSparseMatrix> sparse_;
+  int size_ = 0;
+  Product product_;
+};
+
+}  // namespace coulomb::solvers

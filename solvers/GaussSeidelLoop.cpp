@@ -1,0 +1,142 @@
+#include <coulomb/solvers/GaussSeidelLoop.hpp>
+
+#include <coulomb/solvers/CoulombLaw.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <sstream>
+#include <vector>
+
+namespace coulomb::solvers {
+
+namespace {
+
+// Local free velocity of block b (3.1): q_b + sum over the other blocks of its row.
+void localFreeVelocity(const PreparedProblem& p, int b, const Eigen::VectorXd& r, double* qt) {
+  const BlockSparseMatrix& W = p.W;
+  const int off = p.offset[b], s = W.blockSize(b);
+  for (int a = 0; a < s; ++a) qt[a] = p.q[off + a];
+  for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
+    const int j = W.blockColumn(k);
+    if (j == b) continue;
+    const double* v = W.blockValues(k);
+    const int oj = p.offset[j], sj = W.blockSize(j);
+    if (s == 3 && sj == 3) {
+      const double x0 = r[oj], x1 = r[oj + 1], x2 = r[oj + 2];
+      qt[0] += v[0] * x0 + v[1] * x1 + v[2] * x2;
+      qt[1] += v[3] * x0 + v[4] * x1 + v[5] * x2;
+      qt[2] += v[6] * x0 + v[7] * x1 + v[8] * x2;
+    } else {
+      for (int a = 0; a < s; ++a)
+        for (int c = 0; c < sj; ++c) qt[a] += v[sj * a + c] * r[oj + c];
+    }
+  }
+}
+
+double projectScalar(const ConstraintBlock& b, double x) {
+  switch (b.kind) {
+    case BlockKind::Unilateral:
+      return std::max(x, 0.0);
+    case BlockKind::Bounded:
+      return std::clamp(x, b.lower, b.upper);
+    default:
+      return x;
+  }
+}
+
+}  // namespace
+
+void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
+                    const GaussSeidelSettings& settings, const ContactUpdate& update,
+                    Eigen::VectorXd& r, SolverReport& report) {
+  const int nb = p.blockCount();
+  const int maxSweeps = context.maxIterations(settings.defaultMaxSweeps);
+  std::vector<int> order(nb);
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 rng(settings.seed);
+  double omega = settings.omega;
+  bool omegaSwitched = false;
+
+  Eigen::VectorXd u, best = r;
+  double bestResidual = p.residual(r, u);
+  double windowBest = bestResidual;
+  int windowStart = 0;
+  report.status = SolverStatus::MaxIterations;
+  report.nativeResidualName = "common residual at the last check";
+  int sweep = 0;
+  while (sweep < maxSweeps) {
+    if (context.timeUp(report)) break;
+    ++sweep;
+    if (settings.shuffle)
+      for (int i = nb - 1; i > 0; --i) std::swap(order[i], order[rng() % (i + 1)]);
+    for (int b : order) {
+      const int off = p.offset[b];
+      double qt[3];
+      localFreeVelocity(p, b, r, qt);
+      const ConstraintBlock& blk = p.blocks[b];
+      if (blk.isContact()) {
+        const Eigen::Vector3d old(r[off], r[off + 1], r[off + 2]);
+        Eigen::Vector3d next = old;
+        update(b, Eigen::Vector3d(qt[0], qt[1], qt[2]), next);
+        if (omega != 1.0) {  // relax the step, then project (3.5)
+          double x[3] = {old[0] + omega * (next[0] - old[0]), old[1] + omega * (next[1] - old[1]),
+                         old[2] + omega * (next[2] - old[2])};
+          projectOntoCone(x, blk.mu);
+          next = Eigen::Vector3d(x[0], x[1], x[2]);
+        }
+        if (next.allFinite()) r.segment<3>(off) = next;
+      } else {  // exact scalar solve: u_i = W_ii r_i + q~_i = 0, then project (10.1)
+        const double w = p.W.blockValues(p.W.diagonalBlock(b))[0];
+        const double exact = projectScalar(blk, -qt[0] / w);
+        r[off] = projectScalar(blk, r[off] + omega * (exact - r[off]));
+      }
+    }
+    const int interval =
+        settings.residualInterval > 0 ? settings.residualInterval : std::clamp(sweep / 20, 1, 5);
+    if (sweep % interval != 0 && sweep != maxSweeps) continue;
+    const double e = p.residual(r, u);
+    context.record(report, sweep, e);
+    report.nativeResidual = e;
+    if (e < bestResidual || !std::isfinite(bestResidual)) {
+      bestResidual = e;
+      best = r;
+    }
+    if (e <= context.tolerance()) {
+      report.status = SolverStatus::Converged;
+      break;
+    }
+    if (!std::isfinite(e)) {
+      report.status = SolverStatus::NumericalFailure;
+      report.note("non-finite residual");
+      break;
+    }
+    if (sweep - windowStart >= settings.stallWindow) {
+      if (bestResidual > (1.0 - settings.stallDecrease) * windowBest) {
+        if (settings.omegaAfterStall > 0 && !omegaSwitched) {
+          omegaSwitched = true;
+          omega = settings.omegaAfterStall;
+          std::ostringstream s;
+          s << "stalled at sweep " << sweep << " (" << bestResidual << "): omega -> " << omega;
+          report.note(s.str());
+          r = best;
+        } else {
+          report.status = SolverStatus::Stalled;
+          std::ostringstream s;
+          s << "best residual fell by less than " << settings.stallDecrease * 100 << " % in "
+            << settings.stallWindow << " sweeps";
+          report.note(s.str());
+          break;
+        }
+      }
+      windowBest = bestResidual;
+      windowStart = sweep;
+    }
+  }
+  report.iterations = sweep;
+  if (report.status != SolverStatus::Converged) r = best;
+  if (report.timeLimitReached) report.note("time limit reached");
+}
+
+}  // namespace coulomb::solvers

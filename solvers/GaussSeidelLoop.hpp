@@ -1,0 +1,36 @@
+#pragma once
+// The Gauss-Seidel skeleton shared by pgs and bgs (SOLVERS.md Algorithm 3.1): sweep the blocks in a
+// fixed or seeded-shuffled order, give each contact its local free velocity
+// q~_c = q_c + sum_{d != c} W_cd r_d (3.1) and let the solver's local rule propose r_c, relax the
+// step (3.5), solve scalar rows exactly (10.1), check the common residual every few sweeps on
+// u = W r + q recomputed, keep the best iterate, detect stalls.
+#include <coulomb/solvers/PreparedProblem.hpp>
+#include <coulomb/solvers/SolverReport.hpp>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <functional>
+
+namespace coulomb::solvers {
+
+struct GaussSeidelSettings {
+  double omega = 1.0;            // relaxation of the step (3.5), in (0, 2)
+  double omegaAfterStall = 0.0;  // switch to this omega at the first stall (0: stop instead)
+  int stallWindow = 500;         // [sweeps] window of the stall test
+  double stallDecrease = 0.01;   // stalled if the best residual fell by less than this fraction
+  bool shuffle = false;          // visit order reshuffled every sweep by a local seeded RNG
+  std::uint64_t seed = 0;        // seed of that RNG (determinism rule 7)
+  int residualInterval = 0;      // [sweeps] between residual checks; 0 = auto (1, then up to 5)
+  int defaultMaxSweeps = 10000;  // when SolverOptions::maxIterations is 0
+};
+
+// Proposes a new r_c for contact block b given its local free velocity q~ (r holds r_c on entry).
+using ContactUpdate =
+    std::function<void(int block, const Eigen::Vector3d& qTilde, Eigen::Vector3d& r)>;
+
+void runGaussSeidel(const PreparedProblem& problem, const SolveContext& context,
+                    const GaussSeidelSettings& settings, const ContactUpdate& update,
+                    Eigen::VectorXd& r, SolverReport& report);
+
+}  // namespace coulomb::solvers

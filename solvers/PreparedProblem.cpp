@@ -1,0 +1,115 @@
+#include <coulomb/solvers/PreparedProblem.hpp>
+
+#include <coulomb/solvers/CoulombLaw.hpp>
+#include <coulomb/solvers/Residual.hpp>
+
+#include <algorithm>
+
+namespace coulomb::solvers {
+
+PreparedProblem PreparedProblem::from(const ContactProblem& problem) {
+  PreparedProblem p;
+  p.blocks = problem.blocks;
+  p.offset = problem.blockOffsets();
+  p.W = problem.W.toBlockSparse(problem.blockSizes());
+  p.q = problem.q;
+  bool anisotropic = false;
+  for (const ConstraintBlock& b : p.blocks) anisotropic |= b.isContact() && b.anisotropic;
+  if (anisotropic) {
+    p.scale = Eigen::VectorXd::Ones(p.size());
+    for (size_t b = 0; b < p.blocks.size(); ++b) {
+      ConstraintBlock& k = p.blocks[b];
+      if (!k.isContact() || !k.anisotropic) continue;
+      p.scale[p.offset[b] + 1] = k.mu1;
+      p.scale[p.offset[b] + 2] = k.mu2;
+      k = ConstraintBlock::contact(1.0);
+    }
+    p.W = p.W.scaledSymmetric(p.scale);
+    p.q = p.q.cwiseProduct(p.scale);
+  }
+  p.qNorm = plainNorm(p.q);
+  for (int i = 0; i < p.size(); ++i) p.maxDiagonal = std::max(p.maxDiagonal, p.diagonal(i));
+  return p;
+}
+
+Eigen::Matrix3d PreparedProblem::contactBlock(int b) const {
+  const double* v = W.blockValues(W.diagonalBlock(b));
+  Eigen::Matrix3d m;
+  m << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
+  return m;
+}
+
+double PreparedProblem::diagonal(int row) const {
+  const int b =
+      static_cast<int>(std::upper_bound(offset.begin(), offset.end(), row) - offset.begin()) - 1;
+  const int a = row - offset[b], s = W.blockSize(b);
+  return W.blockValues(W.diagonalBlock(b))[(s + 1) * a];
+}
+
+void PreparedProblem::velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) const {
+  u = q;
+  W.multiplyAdd(r, u);
+}
+
+double PreparedProblem::residualFromVelocity(const Eigen::VectorXd& r,
+                                             const Eigen::VectorXd& u) const {
+  return solvers::residualFromVelocity(blocks, r, u) / (1.0 + qNorm);
+}
+
+double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u) const {
+  velocity(r, u);
+  return residualFromVelocity(r, u);
+}
+
+void PreparedProblem::project(Eigen::VectorXd& r) const {
+  for (int b = 0; b < blockCount(); ++b) {
+    double* x = r.data() + offset[b];
+    switch (blocks[b].kind) {
+      case BlockKind::Contact3D:
+        projectOntoCone(x, blocks[b].mu);
+        break;
+      case BlockKind::Unilateral:
+        x[0] = std::max(x[0], 0.0);
+        break;
+      case BlockKind::Bounded:
+        x[0] = std::clamp(x[0], blocks[b].lower, blocks[b].upper);
+        break;
+      case BlockKind::Equality:
+        break;
+    }
+  }
+}
+
+Eigen::VectorXd PreparedProblem::toOriginal(const Eigen::VectorXd& r) const {
+  return scale.size() == 0 ? r : Eigen::VectorXd(r.cwiseProduct(scale));
+}
+
+Eigen::VectorXd PreparedProblem::fromOriginal(const Eigen::VectorXd& r) const {
+  if (scale.size() == 0) return r;
+  Eigen::VectorXd out = r;
+  for (int i = 0; i < size(); ++i) out[i] = scale[i] > 0 ? r[i] / scale[i] : 0.0;
+  return out;
+}
+
+SolveContext::SolveContext(const SolverOptions& options, Clock::time_point start)
+    : options_(options), start_(start) {}
+
+double SolveContext::elapsed() const {
+  return std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+bool SolveContext::timeUp(SolverReport& report) const {
+  if (elapsed() < options_.timeLimitSeconds) return false;
+  report.timeLimitReached = true;
+  return true;
+}
+
+void SolveContext::record(SolverReport& report, int iteration, double residual) const {
+  if (options_.recordHistory) report.history.push_back({iteration, elapsed(), residual});
+}
+
+SolveContext SolveContext::withOptions(const SolverOptions& options) const {
+  return SolveContext(options, start_);
+}
+
+}  // namespace coulomb::solvers

@@ -1,0 +1,71 @@
+#pragma once
+// The form every solver works on, built once per solve by ContactSolver::solve from a validated
+// ContactProblem: W as a block-sparse matrix over the problem's blocks, q, block offsets and the
+// per-block data the inner loops need. Anisotropic contacts are mapped to isotropic ones with
+// mu = 1 by the change of variables r = S r~, S = diag(1, mu1, mu2): then u~ = S u = (S W S) r~ + S
+// q and ||M^-1 r_T|| <= r_N becomes ||r~_T|| <= r~_N, with the De Saxce shift u~_N + ||u~_T|| = u_N
+// + ||M u_T||: the same law, so every solver only ever sees isotropic cones.
+#include <coulomb/solvers/BlockSparseMatrix.hpp>
+#include <coulomb/solvers/ContactProblem.hpp>
+#include <coulomb/solvers/SolverOptions.hpp>
+#include <coulomb/solvers/SolverReport.hpp>
+
+#include <Eigen/Core>
+
+#include <chrono>
+#include <vector>
+
+namespace coulomb::solvers {
+
+struct PreparedProblem {
+  BlockSparseMatrix W;
+  Eigen::VectorXd q;
+  std::vector<ConstraintBlock> blocks;  // isotropic (anisotropic ones mapped, see above)
+  std::vector<int> offset;              // blocks.size() + 1 entries
+  Eigen::VectorXd scale;                // r_original = scale .* r; empty = identity
+  double qNorm = 0.0;                   // plainNorm(q)
+  double maxDiagonal = 0.0;             // max_i W_ii
+
+  static PreparedProblem from(const ContactProblem& problem);
+
+  [[nodiscard]] int size() const { return static_cast<int>(q.size()); }
+  [[nodiscard]] int blockCount() const { return static_cast<int>(blocks.size()); }
+  [[nodiscard]] Eigen::Matrix3d contactBlock(int b) const;  // W_bb of a contact block
+  [[nodiscard]] double diagonal(int row) const;             // W_ii
+
+  void velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;  // u = W r + q
+  // e_rel of (1.8) in this problem's variables; computes u.
+  double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;
+  [[nodiscard]] double residualFromVelocity(const Eigen::VectorXd& r,
+                                            const Eigen::VectorXd& u) const;
+  // Projection onto the constraint set: cones, bounds, [0, inf); equality rows untouched.
+  void project(Eigen::VectorXd& r) const;
+  [[nodiscard]] Eigen::VectorXd toOriginal(const Eigen::VectorXd& r) const;
+  [[nodiscard]] Eigen::VectorXd fromOriginal(const Eigen::VectorXd& r) const;
+};
+
+// Per-solve services: clock, time limit, iteration budget, history.
+class SolveContext {
+ public:
+  using Clock = std::chrono::steady_clock;
+  SolveContext(const SolverOptions& options, Clock::time_point start);
+
+  [[nodiscard]] const SolverOptions& options() const { return options_; }
+  [[nodiscard]] double tolerance() const { return options_.tolerance; }
+  [[nodiscard]] int maxIterations(int solverDefault) const {
+    return options_.maxIterations > 0 ? options_.maxIterations : solverDefault;
+  }
+  [[nodiscard]] double elapsed() const;
+  // True once the time limit has passed (and marks the report).
+  bool timeUp(SolverReport& report) const;
+  // Appends to report.history when the options ask for it.
+  void record(SolverReport& report, int iteration, double residual) const;
+  // A context with the same clock and limit but other options (inner solves of composite solvers).
+  [[nodiscard]] SolveContext withOptions(const SolverOptions& options) const;
+
+ private:
+  SolverOptions options_;
+  Clock::time_point start_;
+};
+
+}  // namespace coulomb::solvers

@@ -1,0 +1,34 @@
+#pragma once
+// Options common to every solver. Each solver family has its own typed struct next to it
+// (pgs/PgsSolver.hpp: PgsOptions, bgs/BgsSolver.hpp: BgsOptions, newton/AcNewtonSolver.hpp:
+// AcNewtonOptions, ...), passed to the solver's constructor: adding a solver never changes this
+// file (ARCHITECTURE.md golden rule 4: typed value structs, unit, default and reason per field).
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace coulomb::solvers {
+
+struct SolverOptions {
+  // [-] Target of the common relative residual e_rel (SOLVERS.md (1.8)). Default 1e-8: the corpus
+  // target; a simulation step is visually exact far above it (1e-4..1e-6 are common in games).
+  double tolerance = 1e-8;
+  // [iterations: Newton steps or Gauss-Seidel sweeps] 0 = the solver's own default (pgs, bgs:
+  // 10000 sweeps like Siconos' NSGS; ac_newton: 200 like AC11 section 5.2).
+  int maxIterations = 0;
+  // [s] Wall-clock budget, checked once per iteration (a Gauss-Seidel sweep, a Newton step):
+  // a corpus run must never hang. Default: no limit (the step loop sets one when it needs to).
+  double timeLimitSeconds = std::numeric_limits<double>::infinity();
+  // Start from ContactProblem::warmStart when present (projected onto the constraint set and
+  // kept only if its residual beats r = 0, SOLVERS.md (3.6)). Default on: warm starts are what
+  // make stacks cheap.
+  bool useWarmStart = true;
+  // Record (iteration, seconds, e_rel) after every iteration in SolverReport::history. Default off:
+  // it costs one residual evaluation per iteration for solvers that do not compute it anyway.
+  bool recordHistory = false;
+};
+
+// The first invalid field, or nullopt.
+std::optional<std::string> validateOptions(const SolverOptions& options);
+
+}  // namespace coulomb::solvers

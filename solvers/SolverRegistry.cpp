@@ -1,0 +1,49 @@
+#include <coulomb/solvers/SolverRegistry.hpp>
+
+#include <coulomb/solvers/bgs/BgsSolver.hpp>
+#include <coulomb/solvers/newton/AcNewtonSolver.hpp>
+#include <coulomb/solvers/pgs/PgsSolver.hpp>
+
+#include <stdexcept>
+
+namespace coulomb::solvers {
+
+SolverRegistry SolverRegistry::builtIn() {
+  SolverRegistry r;
+  r.add({"pgs", "projected Gauss-Seidel / PSOR, exact per-contact cone projection (SOLVERS.md 3)",
+         [] { return std::make_unique<PgsSolver>(); }});
+  r.add({"bgs", "blocked Gauss-Seidel, exact local 3x3 contact solve (SOLVERS.md 4)",
+         [] { return std::make_unique<BgsSolver>(); }});
+  r.add({"ac_newton",
+         "Alart-Curnier nonsmooth Newton, Goldstein-Price search, regularized sparse LU "
+         "(SOLVERS.md 5)",
+         [] { return std::make_unique<AcNewtonSolver>(); }});
+  return r;
+}
+
+void SolverRegistry::add(SolverEntry entry) {
+  if (entry.name.empty() || !entry.create)
+    throw std::invalid_argument("solver entry needs a name and a factory");
+  if (find(entry.name))
+    throw std::invalid_argument("solver '" + entry.name + "' already registered");
+  entries_.push_back(std::move(entry));
+}
+
+const SolverEntry* SolverRegistry::find(const std::string& name) const {
+  for (const SolverEntry& e : entries_)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+std::unique_ptr<ContactSolver> SolverRegistry::create(const std::string& name) const {
+  const SolverEntry* e = find(name);
+  return e ? e->create() : nullptr;
+}
+
+std::vector<std::string> SolverRegistry::names() const {
+  std::vector<std::string> n;
+  for (const SolverEntry& e : entries_) n.push_back(e.name);
+  return n;
+}
+
+}  // namespace coulomb::solvers

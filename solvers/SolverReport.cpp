@@ -1,0 +1,29 @@
+#include <coulomb/solvers/SolverReport.hpp>
+
+namespace coulomb::solvers {
+
+const char* statusName(SolverStatus status) {
+  switch (status) {
+    case SolverStatus::Converged:
+      return "converged";
+    case SolverStatus::MaxIterations:
+      return "max_iterations";
+    case SolverStatus::Stalled:
+      return "stalled";
+    case SolverStatus::NumericalFailure:
+      return "numerical_failure";
+    case SolverStatus::InvalidProblem:
+      return "invalid_problem";
+    case SolverStatus::NotApplicable:
+      return "not_applicable";
+  }
+  return "?";
+}
+
+void SolverReport::note(const std::string& text) {
+  if (text.empty()) return;
+  if (!message.empty()) message += "; ";
+  message += text;
+}
+
+}  // namespace coulomb::solvers

@@ -1,0 +1,99 @@
+#include <coulomb/solvers/newton/AcNewtonSolver.hpp>
+
+#include <coulomb/solvers/Residual.hpp>
+#include <coulomb/solvers/bgs/BgsSolver.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace coulomb::solvers {
+
+namespace {
+
+// Proximal point (5.9) from r (best so far): subproblems FC(W + sigma I, q - sigma r_k).
+void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const AcNewtonOptions& o,
+                  const SolveContext& context, int budget, Eigen::VectorXd& r,
+                  SolverReport& report) {
+  double meanDiag = 0;
+  for (int i = 0; i < p.size(); ++i) meanDiag += p.diagonal(i);
+  meanDiag /= std::max(1, p.size());
+  double sigma = o.proximalInitialShift * meanDiag;
+  Eigen::VectorXd u, best = r;
+  double e = p.residual(r, u), bestE = e;
+  PreparedProblem inner = p;
+  const double tol = context.tolerance();
+  int outer = 0, used = 0;
+  while (used < budget && bestE > tol) {
+    if (context.timeUp(report)) break;
+    ++outer;
+    inner.W = p.W;
+    inner.W.addToDiagonal(sigma);
+    inner.q = p.q - sigma * r;
+    inner.qNorm = plainNorm(inner.q);
+    SolverOptions innerOptions = context.options();
+    innerOptions.tolerance = std::max(tol / 10, std::min(1e-2, e / 10));
+    innerOptions.recordHistory = false;
+    const SolveContext innerContext = context.withOptions(innerOptions);
+    SolverReport innerReport;
+    Eigen::VectorXd x = r;
+    runNonsmoothNewton(inner, f, o.newton, innerContext,
+                       std::min(o.proximalInnerIterations, budget - used), x, innerReport);
+    used += std::max(1, innerReport.iterations);
+    report.lineSearchFailures += innerReport.lineSearchFailures;
+    report.maxRegularization = std::max(report.maxRegularization, innerReport.maxRegularization);
+    if (innerReport.timeLimitReached) report.timeLimitReached = true;
+    if (!x.allFinite()) break;
+    r = x;
+    e = p.residual(r, u);
+    context.record(report, report.iterations + used, e);
+    if (e < bestE) bestE = e, best = r;
+    if (innerReport.status == SolverStatus::Converged)
+      sigma = std::min(sigma, 5.0 * e * meanDiag);
+    else
+      sigma *= 10.0;
+    sigma = std::max(sigma, 1e-14 * meanDiag);
+  }
+  report.iterations += used;
+  r = best;
+  std::ostringstream msg;
+  msg << "proximal point (5.9): " << outer << " subproblems, " << used << " Newton iterations";
+  report.note(msg.str());
+  report.status = bestE <= tol              ? SolverStatus::Converged
+                  : report.timeLimitReached ? SolverStatus::MaxIterations
+                  : used >= budget          ? SolverStatus::MaxIterations
+                                            : SolverStatus::Stalled;
+}
+
+}  // namespace
+
+void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext& context,
+                                   Eigen::VectorXd& r, SolverReport& report) const {
+  const int budget = context.maxIterations(options_.newton.defaultMaxIterations);
+  if (options_.hybridSweeps > 0) {  // hybrid start (a): a few bgs sweeps
+    SolverOptions gsOptions = context.options();
+    gsOptions.maxIterations = options_.hybridSweeps;
+    gsOptions.recordHistory = false;
+    SolverReport gsReport;
+    BgsSolver().solvePrepared(p, context.withOptions(gsOptions), r, gsReport);
+    report.note("hybrid start: " + std::to_string(gsReport.iterations) + " bgs sweeps");
+    if (gsReport.status == SolverStatus::Converged) {
+      report.status = SolverStatus::Converged;
+      report.iterations = 0;
+      return;
+    }
+  }
+  const AlartCurnierFunction function(options_.radius);
+  runNonsmoothNewton(p, function, options_.newton, context, budget, r, report);
+  if (report.maxRegularization > 0) {
+    std::ostringstream msg;
+    msg << "J regularized by (5.8), sigma up to " << report.maxRegularization
+        << " (= " << report.maxRegularization / p.maxDiagonal << " max W_ii)";
+    report.note(msg.str());
+  }
+  if (options_.proximalOnStall && report.status == SolverStatus::Stalled &&
+      report.iterations < budget && !report.timeLimitReached)
+    proximalLoop(p, function, options_, context, budget - report.iterations, r, report);
+}
+
+}  // namespace coulomb::solvers

@@ -1,0 +1,46 @@
+#pragma once
+// ac_newton: the global Alart-Curnier nonsmooth Newton of AC11 (Bertails-Descoubes et al., ACM TOG
+// 30(1) 2011, section 4, Algorithms 1-2) on the reduced form, SOLVERS.md section 5, with the
+// residual-scaled regularization (5.8) for redundant contacts and, when plain Newton stalls, the
+// proximal-point outer loop (5.9) around the same Newton.
+#include <coulomb/solvers/ContactSolver.hpp>
+#include <coulomb/solvers/newton/NewtonFunction.hpp>
+#include <coulomb/solvers/newton/NonsmoothNewton.hpp>
+
+namespace coulomb::solvers {
+
+struct AcNewtonOptions {
+  // rho per contact (5.14), regularization (5.8), line search (5.10), stall test (5.12), dense
+  // threshold: see NewtonSettings. Defaults: SPECTRAL rho, sigma in [1e-12, 1e-4] max W_ii,
+  // Goldstein-Price m1 = 0.1, m2 = 0.9, 30 trials, Stalled after 20 iterations without 1 %.
+  NewtonSettings newton;
+  // Radius of the friction disk: (5.2a) mu [y_N]_+ (default: AC91 and Siconos' default) or
+  // (5.2b) mu r_N.
+  AlartCurnierFunction::Radius radius = AlartCurnierFunction::Radius::PositivePart;
+  // [sweeps] of bgs before Newton (hybrid start (a) of SOLVERS.md section 5). Default 0: on the
+  // corpus it did not rescue the hard cases, whose obstacle is the singular J.
+  int hybridSweeps = 0;
+  // When Newton stalls, continue with the proximal point method (5.9) from the best iterate:
+  // r_{k+1} solves FC(W + s_k I, q - s_k r_k) by the same Newton. Default on: it solved the
+  // Kaplas tower in the prototypes where plain Newton (with (5.8)) did not.
+  bool proximalOnStall = true;
+  // [-] first proximal shift as a multiple of mean_i W_ii (SOLVERS.md (5.9), scale-aware
+  // version of Siconos' absolute 1e4).
+  double proximalInitialShift = 1.0;
+  // [Newton iterations] cap per proximal subproblem.
+  int proximalInnerIterations = 50;
+};
+
+class AcNewtonSolver final : public ContactSolver {
+ public:
+  explicit AcNewtonSolver(AcNewtonOptions options = {}) : options_(options) {}
+  [[nodiscard]] std::string name() const override { return "ac_newton"; }
+  [[nodiscard]] const AcNewtonOptions& options() const { return options_; }
+  void solvePrepared(const PreparedProblem& problem, const SolveContext& context,
+                     Eigen::VectorXd& r, SolverReport& report) const override;
+
+ private:
+  AcNewtonOptions options_;
+};
+
+}  // namespace coulomb::solvers

@@ -1,0 +1,330 @@
+#include <coulomb/solvers/newton/NonsmoothNewton.hpp>
+
+#include <coulomb/solvers/pgs/PgsSolver.hpp>
+
+#include <Eigen/LU>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+namespace coulomb::solvers {
+
+namespace {
+
+struct BlockJacobian {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero();
+};
+
+// Phi and the blocks of A and B of every block of the problem.
+class NewtonSystem {
+ public:
+  NewtonSystem(const PreparedProblem& p, const NewtonFunction& f, const NewtonSettings& s)
+      : p_(p), f_(f), rhoN_(p.blockCount()), rhoT_(p.blockCount()), jac_(p.blockCount()) {
+    for (int b = 0; b < p.blockCount(); ++b) {
+      if (!p.blocks[b].isContact()) {
+        rhoN_[b] = rhoT_[b] = 1.0 / p.W.blockValues(p.W.diagonalBlock(b))[0];  // (10.2)
+        continue;
+      }
+      const Eigen::Matrix3d W = p.contactBlock(b);
+      switch (s.rho) {  // (5.14)
+        case NewtonSettings::Rho::Spectral:
+          rhoN_[b] = rhoT_[b] = inverseSpectralRadius(W);
+          break;
+        case NewtonSettings::Rho::SplitSpectral:
+          rhoN_[b] = 1.0 / W(0, 0);
+          rhoT_[b] = inverseTangentSpectralRadius(W);
+          if (rhoT_[b] <= 0) rhoT_[b] = rhoN_[b];
+          break;
+        case NewtonSettings::Rho::Constant:
+          rhoN_[b] = rhoT_[b] = s.constantRho;
+          break;
+      }
+    }
+  }
+
+  // Phi(r) with u = W r + q given; stores A, B when `withJacobian`.
+  void evaluate(const Eigen::VectorXd& r, const Eigen::VectorXd& u, Eigen::VectorXd& phi,
+                bool withJacobian) {
+    phi.resize(p_.size());
+    Eigen::Vector3d ph;
+    Eigen::Matrix3d A, B;
+    for (int b = 0; b < p_.blockCount(); ++b) {
+      const int o = p_.offset[b];
+      const ConstraintBlock& blk = p_.blocks[b];
+      if (blk.isContact()) {
+        f_.contact(r.segment<3>(o), u.segment<3>(o), blk.mu, rhoN_[b], rhoT_[b], ph, A, B);
+        phi.segment<3>(o) = ph;
+        if (withJacobian) jac_[b] = {A, B};
+      } else {
+        double a = 0, bb = 0;
+        f_.scalarRow(blk, r[o], u[o], rhoN_[b], phi[o], a, bb);
+        if (withJacobian) {
+          jac_[b].A.setZero();
+          jac_[b].B.setZero();
+          jac_[b].A(0, 0) = a;
+          jac_[b].B(0, 0) = bb;
+        }
+      }
+    }
+  }
+
+  // y = A x + B z (block diagonal products)
+  void applyAB(const Eigen::VectorXd& x, const Eigen::VectorXd& z, Eigen::VectorXd& y) const {
+    y.resize(p_.size());
+    for (int b = 0; b < p_.blockCount(); ++b) {
+      const int o = p_.offset[b], s = p_.W.blockSize(b);
+      for (int a = 0; a < s; ++a) {
+        double v = 0;
+        for (int t = 0; t < s; ++t) v += jac_[b].A(a, t) * x[o + t] + jac_[b].B(a, t) * z[o + t];
+        y[o + a] = v;
+      }
+    }
+  }
+
+  // g = J^T phi = W^T A^T phi + B^T phi (steepest-descent direction is -g)
+  Eigen::VectorXd gradient(const Eigen::VectorXd& phi) const {
+    Eigen::VectorXd atphi = Eigen::VectorXd::Zero(p_.size()), g = Eigen::VectorXd::Zero(p_.size());
+    for (int b = 0; b < p_.blockCount(); ++b) {
+      const int o = p_.offset[b], s = p_.W.blockSize(b);
+      for (int a = 0; a < s; ++a)
+        for (int t = 0; t < s; ++t) {
+          atphi[o + t] += jac_[b].A(a, t) * phi[o + a];
+          g[o + t] += jac_[b].B(a, t) * phi[o + a];
+        }
+    }
+    p_.W.multiplyTransposeAdd(atphi, g);
+    return g;
+  }
+
+  // Solves J_sigma d = -phi with eliminated unit rows (5.7); false if not accurate.
+  bool solve(const Eigen::VectorXd& phi, double sigma, int denseThreshold, Eigen::VectorXd& d) {
+    const int n = p_.size();
+    std::vector<int> index(n, -1), kept;
+    d.setZero(n);
+    for (int b = 0; b < p_.blockCount(); ++b) {
+      const int o = p_.offset[b], s = p_.W.blockSize(b);
+      for (int a = 0; a < s; ++a) {
+        bool unit = true;
+        for (int t = 0; t < s && unit; ++t)
+          unit = jac_[b].A(a, t) == 0.0 && jac_[b].B(a, t) == (t == a ? 1.0 : 0.0);
+        if (unit) {
+          d[o + a] = -phi[o + a];
+        } else {
+          index[o + a] = static_cast<int>(kept.size());
+          kept.push_back(o + a);
+        }
+      }
+    }
+    const int m = static_cast<int>(kept.size());
+    if (m == 0) return true;
+    // rhs = -phi_R - (J_sigma d_E)_R
+    Eigen::VectorXd wd = sigma * d, jd;
+    p_.W.multiplyAdd(d, wd);
+    applyAB(wd, d, jd);
+    Eigen::VectorXd rhs(m);
+    for (int k = 0; k < m; ++k) rhs[k] = -phi[kept[k]] - jd[kept[k]];
+    // J_RR = (A (W + sigma I) + B)_RR, block row by block row.
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(static_cast<size_t>(p_.W.nonZeros()) + n);
+    for (int b = 0; b < p_.blockCount(); ++b) {
+      const int o = p_.offset[b], s = p_.W.blockSize(b);
+      const Eigen::Matrix3d& A = jac_[b].A;
+      const Eigen::Matrix3d& B = jac_[b].B;
+      for (int a = 0; a < s; ++a) {
+        const int row = index[o + a];
+        if (row < 0) continue;
+        for (int k = p_.W.rowBegin(b); k < p_.W.rowEnd(b); ++k) {
+          const int j = p_.W.blockColumn(k), oj = p_.offset[j], sj = p_.W.blockSize(j);
+          const double* v = p_.W.blockValues(k);
+          for (int c = 0; c < sj; ++c) {
+            const int col = index[oj + c];
+            if (col < 0) continue;
+            double val = 0;
+            for (int t = 0; t < s; ++t) val += A(a, t) * v[sj * t + c];
+            if (j == b) val += sigma * A(a, c) + B(a, c);
+            triplets.emplace_back(row, col, val);
+          }
+        }
+      }
+    }
+    Eigen::VectorXd x;
+    double err = 0;
+    if (m <= denseThreshold) {
+      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, m);
+      for (const auto& t : triplets) J(t.row(), t.col()) += t.value();
+      x = J.partialPivLu().solve(rhs);
+      if (!x.allFinite()) return false;
+      err = (J * x - rhs).norm();
+    } else {
+      Eigen::SparseMatrix<double> J(m, m);
+      J.setFromTriplets(triplets.begin(), triplets.end());
+      J.makeCompressed();
+      Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+      lu.analyzePattern(J);
+      lu.factorize(J);
+      if (lu.info() != Eigen::Success) return false;
+      x = lu.solve(rhs);
+      if (lu.info() != Eigen::Success || !x.allFinite()) return false;
+      err = (J * x - rhs).norm();
+    }
+    if (!(err <= 1e-8 * rhs.norm())) return false;
+    for (int k = 0; k < m; ++k) d[kept[k]] = x[k];
+    return true;
+  }
+
+  double maxRho() const {
+    double m = 0;
+    for (double v : rhoN_) m = std::max(m, v);
+    for (double v : rhoT_) m = std::max(m, v);
+    return m;
+  }
+
+ private:
+  const PreparedProblem& p_;
+  const NewtonFunction& f_;
+  std::vector<double> rhoN_, rhoT_;
+  std::vector<BlockJacobian> jac_;
+};
+
+}  // namespace
+
+void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function,
+                        const NewtonSettings& s, const SolveContext& context, int maxIterations,
+                        Eigen::VectorXd& r, SolverReport& report) {
+  const int n = p.size();
+  NewtonSystem system(p, function, s);
+  Eigen::VectorXd u, phi, d, wd, jd, trialR, trialU, trialPhi;
+  double e = p.residual(r, u);
+  Eigen::VectorXd best = r;
+  double bestE = e;
+  std::vector<double> bestHistory{bestE};
+  double boost = 1.0;
+  int failStreak = 0, steepest = 0;
+  const double scaleRho = system.maxRho();
+  report.nativeResidualName = "e_Phi = ||Phi|| / (||r|| + max rho ||q||) (5.13)";
+  report.status = SolverStatus::MaxIterations;
+  int k = 0;
+  for (; k < maxIterations; ++k) {
+    if (e <= context.tolerance()) {
+      report.status = SolverStatus::Converged;
+      break;
+    }
+    if (context.timeUp(report)) break;
+    system.evaluate(r, u, phi, true);
+    if (!phi.allFinite()) {
+      report.status = SolverStatus::NumericalFailure;
+      report.note("non-finite Phi");
+      break;
+    }
+    report.nativeResidual = phi.norm() / (r.norm() + scaleRho * p.qNorm + 1e-300);
+    const double psi0 = 0.5 * phi.squaredNorm();
+    // (5.8) residual-scaled shift, escalated by x100 after failures.
+    double sigma = std::clamp(e, s.minShift, s.maxShift) * p.maxDiagonal * boost;
+    if (s.maxShift <= 0) sigma = 0;
+    bool ok = system.solve(phi, sigma, s.denseThreshold, d);
+    if (!ok) {
+      sigma = std::max(sigma, 1e-10 * p.maxDiagonal) * 100.0;
+      ok = system.solve(phi, sigma, s.denseThreshold, d);
+    }
+    report.maxRegularization = std::max(report.maxRegularization, sigma);
+    wd.setZero(n);
+    if (ok) {
+      p.W.multiplyAdd(d, wd);
+      system.applyAB(wd, d, jd);
+    }
+    double slope = ok ? phi.dot(jd) : 0.0;
+    if (!ok || !(slope < 0) || !d.allFinite()) {  // steepest descent on psi
+      d = -system.gradient(phi);
+      wd.setZero(n);
+      p.W.multiplyAdd(d, wd);
+      system.applyAB(wd, d, jd);
+      slope = phi.dot(jd);
+      ++steepest;
+      if (!(slope < 0)) {
+        report.status = SolverStatus::Stalled;
+        report.note("no descent direction");
+        break;
+      }
+    }
+    // Goldstein-Price, Algorithm 5.2.
+    double alpha = 1.0, lo = 0.0, hi = std::numeric_limits<double>::infinity();
+    double bestAlpha = 0.0, bestPsi = psi0;
+    bool accepted = false;
+    for (int t = 0; t < s.lineSearchTrials; ++t) {
+      trialR = r + alpha * d;
+      trialU = u + alpha * wd;
+      system.evaluate(trialR, trialU, trialPhi, false);
+      const double psi = 0.5 * trialPhi.squaredNorm();
+      if (psi < bestPsi) bestPsi = psi, bestAlpha = alpha;
+      const double avg = (psi - psi0) / alpha;
+      if (avg < s.m2 * slope) {
+        lo = alpha;
+      } else if (avg > s.m1 * slope) {
+        hi = alpha;
+      } else {
+        accepted = true;
+        break;
+      }
+      alpha = std::isfinite(hi) ? 0.5 * (lo + hi) : 10.0 * alpha;
+    }
+    if (!accepted) {
+      ++report.lineSearchFailures;
+      alpha = bestAlpha > 0 ? bestAlpha : alpha;
+      if (++failStreak >= 3) {
+        boost *= 100.0;
+        failStreak = 0;
+      }
+    } else {
+      failStreak = 0;
+    }
+    const double stepNorm = alpha * d.norm();
+    r += alpha * d;
+    e = p.residual(r, u);  // u recomputed: the residual is measured after the update
+    if (!r.allFinite() || !std::isfinite(e)) {
+      report.status = SolverStatus::NumericalFailure;
+      report.note("non-finite iterate");
+      r = best;
+      e = bestE;
+      ++k;
+      break;
+    }
+    context.record(report, report.iterations + k + 1, e);
+    if (e < bestE) {
+      bestE = e;
+      best = r;
+    }
+    bestHistory.push_back(bestE);
+    if (e <= context.tolerance()) {
+      report.status = SolverStatus::Converged;
+      ++k;
+      break;
+    }
+    const int h = static_cast<int>(bestHistory.size()) - 1;
+    if (h >= s.stallIterations &&
+        bestE > (1.0 - s.stallDecrease) * bestHistory[h - s.stallIterations]) {
+      report.status = SolverStatus::Stalled;
+      std::ostringstream msg;
+      msg << "best residual fell by less than " << s.stallDecrease * 100 << " % in "
+          << s.stallIterations << " iterations";
+      report.note(msg.str());
+      ++k;
+      break;
+    }
+    if (stepNorm <= 10 * std::numeric_limits<double>::epsilon() * r.norm()) {
+      report.status = SolverStatus::Stalled;
+      report.note("step below 10 eps ||r||");
+      ++k;
+      break;
+    }
+  }
+  report.iterations += k;
+  if (report.status != SolverStatus::Converged) r = best;
+  if (steepest > 0) report.note(std::to_string(steepest) + " steepest-descent steps");
+}
+
+}  // namespace coulomb::solvers

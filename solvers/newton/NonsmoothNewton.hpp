@@ -1,0 +1,38 @@
+#pragma once
+// The global nonsmooth Newton loop on Phi(r) = 0 for any per-block NewtonFunction (Algorithm 5.1
+// of SOLVERS.md on the reduced form, unknown r only): generalized Jacobian J = A W + B (5.5),
+// rows with J_i = e_i eliminated (5.7), the residual-scaled shift J_sigma = A (W + sigma I) + B
+// (5.8) that keeps redundant contacts (rank-deficient W) solvable, dense or sparse LU,
+// Goldstein-Price line search (Algorithm 5.2), stopping by (5.12) on the common residual.
+#include <coulomb/solvers/PreparedProblem.hpp>
+#include <coulomb/solvers/SolverReport.hpp>
+#include <coulomb/solvers/newton/NewtonFunction.hpp>
+
+#include <Eigen/Core>
+
+namespace coulomb::solvers {
+
+struct NewtonSettings {
+  // rho per contact (5.14) from sym(W_cc): Spectral 1/lambda_max (default, 28/30 in the
+  // prototypes), SplitSpectral 1/S_NN and 1/lambda_max(S_TT), Constant `constantRho`.
+  enum class Rho { Spectral, SplitSpectral, Constant };
+  Rho rho = Rho::Spectral;
+  double constantRho = 1.0;
+  // (5.8): sigma = min(maxShift, max(minShift, e_rel)) * max_i W_ii; 0/0 disables the shift.
+  double minShift = 1e-12, maxShift = 1e-4;
+  int lineSearchTrials = 30;       // Algorithm 5.2, global
+  double m1 = 0.1, m2 = 0.9;       // (5.10)
+  int stallIterations = 20;        // (5.12): Stalled when the best e_rel fell by < 1 % ...
+  double stallDecrease = 0.01;     // ... over this many iterations
+  int denseThreshold = 300;        // unknowns left after elimination: dense LU below
+  int defaultMaxIterations = 200;  // AC11 section 5.2
+};
+
+// Runs at most `maxIterations` Newton steps from r (feasible start, prepared variables); r is the
+// best iterate on exit. Fills status (Converged, MaxIterations, Stalled, NumericalFailure),
+// adds to report.iterations, sets the native residual e_Phi (5.13) and the regularization notes.
+void runNonsmoothNewton(const PreparedProblem& problem, const NewtonFunction& function,
+                        const NewtonSettings& settings, const SolveContext& context,
+                        int maxIterations, Eigen::VectorXd& r, SolverReport& report);
+
+}  // namespace coulomb::solvers

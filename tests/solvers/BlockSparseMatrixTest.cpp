@@ -1,0 +1,52 @@
+#include <gtest/gtest.h>
+#include <coulomb/solvers/BlockSparseMatrix.hpp>
+
+using namespace coulomb::solvers;
+
+namespace {
+BlockSparseMatrix mixed() {  // blocks: contact (3), scalar (1)
+  std::vector<MatrixBlockEntry> e;
+  e.push_back({0, 0, {4, 1, 0, 1, 3, 0, 0, 0, 2}});
+  e.push_back({0, 1, {1, 0, 2}});
+  e.push_back({1, 0, {1, 0, 2}});
+  e.push_back({1, 1, {5}});
+  e.push_back({1, 1, {1}});  // duplicate: summed
+  return BlockSparseMatrix({3, 1}, e);
+}
+}  // namespace
+
+TEST(BlockSparseMatrix, LayoutAndDuplicates) {
+  const BlockSparseMatrix A = mixed();
+  EXPECT_EQ(A.size(), 4);
+  EXPECT_EQ(A.blockCount(), 2);
+  EXPECT_EQ(A.nonZeroBlocks(), 4);
+  EXPECT_EQ(A.blockOffset(1), 3);
+  ASSERT_GE(A.diagonalBlock(1), 0);
+  EXPECT_DOUBLE_EQ(A.blockValues(A.diagonalBlock(1))[0], 6.0);
+}
+
+TEST(BlockSparseMatrix, ProductsMatchDense) {
+  const BlockSparseMatrix A = mixed();
+  const Eigen::MatrixXd D = A.toDense();
+  EXPECT_TRUE(D.isApprox(Eigen::MatrixXd(A.toSparse())));
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(4, -1, 2);
+  Eigen::VectorXd y;
+  A.multiply(x, y);
+  EXPECT_LT((y - D * x).norm(), 1e-14);
+  Eigen::VectorXd z = Eigen::VectorXd::Ones(4);
+  A.multiplyTransposeAdd(x, z);
+  EXPECT_LT((z - Eigen::VectorXd::Ones(4) - D.transpose() * x).norm(), 1e-14);
+  const Eigen::VectorXd s = Eigen::Vector4d(1, 2, 3, 4);
+  EXPECT_LT((A.scaledSymmetric(s).toDense() - s.asDiagonal() * D * s.asDiagonal()).norm(), 1e-13);
+  BlockSparseMatrix B = A;
+  B.addToDiagonal(0.5);
+  EXPECT_LT((B.toDense() - D - 0.5 * Eigen::MatrixXd::Identity(4, 4)).norm(), 1e-15);
+}
+
+TEST(BlockSparseMatrix, RejectsBadBlocks) {
+  EXPECT_THROW(BlockSparseMatrix({3, 4}, {}), std::invalid_argument);
+  EXPECT_THROW(BlockSparseMatrix({3}, {{0, 1, std::vector<double>(9, 0.0)}}),
+               std::invalid_argument);
+  EXPECT_THROW(BlockSparseMatrix({3}, {{0, 0, std::vector<double>(4, 0.0)}}),
+               std::invalid_argument);
+}

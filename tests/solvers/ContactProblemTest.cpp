@@ -1,0 +1,70 @@
+#include <gtest/gtest.h>
+#include <coulomb/solvers/ContactProblem.hpp>
+
+#include <limits>
+
+using namespace coulomb::solvers;
+
+namespace {
+ContactProblem twoContacts() {
+  return ContactProblem::contacts(DelassusOperator::dense(Eigen::MatrixXd::Identity(6, 6)),
+                                  Eigen::VectorXd::Constant(6, -1.0), {0.5, 0.3}, "two");
+}
+bool mentions(const std::optional<std::string>& m, const std::string& word) {
+  return m && m->find(word) != std::string::npos;
+}
+}  // namespace
+
+TEST(ContactProblem, WellFormedPasses) {
+  const ContactProblem p = twoContacts();
+  EXPECT_FALSE(p.validate().has_value());
+  EXPECT_EQ(p.size(), 6);
+  EXPECT_EQ(p.contactCount(), 2);
+  EXPECT_EQ(p.blockOffsets().back(), 6);
+}
+
+TEST(ContactProblem, NamesTheFirstBrokenInvariant) {
+  ContactProblem p = twoContacts();
+  p.q.resize(5);
+  EXPECT_TRUE(mentions(p.validate(), "q has 5"));
+  p = twoContacts();
+  p.W = DelassusOperator::dense(Eigen::MatrixXd::Identity(6, 5));
+  EXPECT_TRUE(mentions(p.validate(), "not square"));
+  p = twoContacts();
+  p.blocks[1].mu = -0.1;
+  EXPECT_TRUE(mentions(p.validate(), "mu = -0.1 < 0"));
+  p = twoContacts();
+  Eigen::MatrixXd W = Eigen::MatrixXd::Identity(6, 6);
+  W(4, 1) = std::numeric_limits<double>::quiet_NaN();
+  p.W = DelassusOperator::dense(W);
+  EXPECT_TRUE(mentions(p.validate(), "W(4, 1) is not finite"));
+  p = twoContacts();
+  W = Eigen::MatrixXd::Identity(6, 6);
+  W(3, 3) = 0.0;
+  p.W = DelassusOperator::dense(W);
+  EXPECT_TRUE(mentions(p.validate(), "not positive on its diagonal"));
+  p = twoContacts();
+  p.q[2] = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(mentions(p.validate(), "q at row 2"));
+  p = twoContacts();
+  p.warmStart = Eigen::VectorXd::Zero(3);
+  EXPECT_TRUE(mentions(p.validate(), "warm start"));
+  p = twoContacts();
+  p.blocks.push_back(ConstraintBlock::bounded(1.0, -1.0));
+  p.W = DelassusOperator::dense(Eigen::MatrixXd::Identity(7, 7));
+  p.q = Eigen::VectorXd::Zero(7);
+  EXPECT_TRUE(mentions(p.validate(), "not an interval"));
+}
+
+TEST(ContactProblem, MixedBlocksAndMatrixFree) {
+  ContactProblem p;
+  p.blocks = {ConstraintBlock::equality(), ConstraintBlock::contact(0.2),
+              ConstraintBlock::unilateral(), ConstraintBlock::anisotropicContact(0.1, 0.4)};
+  EXPECT_EQ(p.size(), 8);
+  p.q = Eigen::VectorXd::Zero(8);
+  p.W = DelassusOperator::matrixFree(
+      8, [](const Eigen::VectorXd& x, Eigen::VectorXd& y) { y = 2.0 * x; });
+  EXPECT_FALSE(p.validate().has_value());
+  p.blocks[3].mu2 = -1;
+  EXPECT_TRUE(mentions(p.validate(), "mu2"));
+}

@@ -1,0 +1,61 @@
+#include <gtest/gtest.h>
+#include <coulomb/solvers/CoulombLaw.hpp>
+
+#include <random>
+
+using namespace coulomb::solvers;
+
+TEST(CoulombLaw, ConeProjectionBranchesAndMoreau) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (double mu : {0.0, 1e-3, 0.3, 1.0, 5.0}) {
+    for (int k = 0; k < 2000; ++k) {
+      const double scale = std::pow(10.0, 8 * U(rng));
+      const Eigen::Vector3d x(scale * U(rng), scale * U(rng), scale * U(rng));
+      const Eigen::Vector3d p = projectOntoCone(x, mu);
+      EXPECT_LE(std::hypot(p[1], p[2]), mu * p[0] + 1e-15 * scale);   // in K
+      EXPECT_LT((projectOntoCone(p, mu) - p).norm(), 1e-15 * scale);  // idempotent
+      const Eigen::Vector3d d = projectOntoDualCone(-x, mu);
+      EXPECT_LT((x - (p - d)).norm(), 4e-15 * scale);        // Moreau (2.3)
+      EXPECT_LT(std::abs(p.dot(d)), 4e-15 * scale * scale);  // orthogonal
+    }
+  }
+  // mu = 0 and x_N < 0: the x_N >= 0 test of (2.1a) matters.
+  EXPECT_EQ(projectOntoCone(Eigen::Vector3d(-1, 0, 0), 0.0), Eigen::Vector3d::Zero());
+}
+
+TEST(CoulombLaw, EllipticConeProjectionIsTheClosestPoint) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const double m1 = 0.2, m2 = 0.9;
+  for (int k = 0; k < 500; ++k) {
+    const Eigen::Vector3d x(U(rng), U(rng), U(rng));
+    const Eigen::Vector3d p = projectOntoEllipticCone(x, m1, m2);
+    EXPECT_LE(std::hypot(p[1] / m1, p[2] / m2), p[0] + 1e-12);
+    // Variational inequality <x - p, z - p> <= 0 for sampled z in K.
+    for (int t = 0; t < 20; ++t) {
+      const double zn = std::abs(U(rng)) * 2, th = 3.2 * U(rng), s = std::abs(U(rng));
+      const Eigen::Vector3d z(zn, zn * s * m1 * std::cos(th), zn * s * m2 * std::sin(th));
+      EXPECT_LE((x - p).dot(z - p), 1e-12);
+    }
+  }
+  const Eigen::Vector3d x(0.3, 1.0, -2.0);
+  EXPECT_LT((projectOntoEllipticCone(x, 0.5, 0.5) - projectOntoCone(x, 0.5)).norm(), 1e-15);
+  EXPECT_DOUBLE_EQ(projectOntoEllipticCone(x, 0.0, 0.5)[1], 0.0);
+}
+
+TEST(CoulombLaw, DiskShiftAndRegimes) {
+  EXPECT_LT((projectOntoDisk(Eigen::Vector2d(3, 4), 1.0) - Eigen::Vector2d(0.6, 0.8)).norm(),
+            1e-15);
+  EXPECT_EQ(projectOntoDisk(Eigen::Vector2d(3, 4), 0.0), Eigen::Vector2d::Zero());
+  EXPECT_DOUBLE_EQ(deSaxceShift(Eigen::Vector3d(1, 3, 4), 0.5)[0], 3.5);
+  EXPECT_EQ(classifyContact(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 2, 0), 0.5),
+            ContactRegime::TakeOff);
+  EXPECT_EQ(classifyContact(Eigen::Vector3d(1, 0.1, 0), Eigen::Vector3d::Zero(), 0.5),
+            ContactRegime::Stick);
+  EXPECT_EQ(classifyContact(Eigen::Vector3d(1, -0.3, -0.4), Eigen::Vector3d(0, 3, 4), 0.5),
+            ContactRegime::Slip);
+  EXPECT_EQ(classifyContact(Eigen::Vector3d(1, 0.3, 0.4), Eigen::Vector3d(0, 3, 4), 0.5),
+            ContactRegime::Violated);
+  EXPECT_STREQ(contactRegimeName(ContactRegime::Slip), "slip");
+}

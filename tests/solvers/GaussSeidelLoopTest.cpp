@@ -1,0 +1,83 @@
+#include <gtest/gtest.h>
+#include <coulomb/solvers/GaussSeidelLoop.hpp>
+#include <coulomb/solvers/pgs/PgsSolver.hpp>
+
+#include "TestProblems.hpp"
+
+using namespace coulomb::solvers;
+
+namespace {
+// A contact coupled to an equality row, a bounded row and a unilateral row.
+ContactProblem mixedProblem() {
+  ContactProblem p;
+  p.blocks = {ConstraintBlock::contact(0.5), ConstraintBlock::equality(),
+              ConstraintBlock::bounded(-0.2, 0.2), ConstraintBlock::unilateral()};
+  Eigen::MatrixXd J(6, 6);
+  J.setIdentity();
+  J(3, 0) = 0.5;
+  J(4, 1) = 0.3;
+  J(5, 2) = -0.4;
+  const Eigen::MatrixXd W = J * J.transpose();
+  p.W = DelassusOperator::dense(W);
+  p.q = (Eigen::VectorXd(6) << -1, 0.2, 0.1, 0.5, 1.0, -0.7).finished();
+  return p;
+}
+}  // namespace
+
+TEST(GaussSeidelLoop, SolvesScalarRowsExactly) {
+  const ContactProblem p = mixedProblem();
+  ASSERT_FALSE(p.validate().has_value());
+  const PreparedProblem pp = PreparedProblem::from(p);
+  SolverOptions o;
+  o.tolerance = 1e-13;
+  const SolveContext context(o, SolveContext::Clock::now());
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(6);
+  SolverReport report;
+  const ContactUpdate keep = [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {};
+  // With the contact frozen at 0, the scalar rows alone must reach their exact values.
+  runGaussSeidel(pp, context, GaussSeidelSettings{}, keep, r, report);
+  Eigen::VectorXd u;
+  pp.velocity(r, u);
+  EXPECT_NEAR(u[3], 0.0, 1e-12);                             // equality: u = 0
+  EXPECT_TRUE(r[4] >= -0.2 - 1e-15 && r[4] <= 0.2 + 1e-15);  // bounded
+  EXPECT_GE(r[5], 0.0);                                      // unilateral
+  EXPECT_GT(report.iterations, 0);
+}
+
+TEST(GaussSeidelLoop, PgsOnMixedRowsAndDeterministicShuffle) {
+  const ContactProblem p = mixedProblem();
+  SolverOptions o;
+  o.tolerance = 1e-12;
+  PgsOptions shuffled;
+  shuffled.shuffle = true;
+  shuffled.seed = 42;
+  const SolveOutcome a = PgsSolver(shuffled).solve(p, o), b = PgsSolver(shuffled).solve(p, o);
+  EXPECT_EQ(a.report.status, SolverStatus::Converged) << a.report.message;
+  EXPECT_LE(a.report.residual, 1e-12);
+  EXPECT_EQ(a.impulses, b.impulses);  // same seed, same bits
+  EXPECT_EQ(a.report.iterations, b.report.iterations);
+}
+
+TEST(GaussSeidelLoop, StallIsReportedAndTimeLimitHonoured) {
+  const ContactProblem p = fixtures::randomMechanical(6, 10, 0.5, 9);  // nu = 1.8
+  const PreparedProblem pp = PreparedProblem::from(p);
+  SolverOptions o;
+  o.tolerance = 0;  // unreachable
+  o.maxIterations = 100000;
+  const SolveContext context(o, SolveContext::Clock::now());
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(pp.size());
+  SolverReport report;
+  GaussSeidelSettings s;
+  s.stallWindow = 50;
+  runGaussSeidel(
+      pp, context, s, [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {}, r, report);
+  EXPECT_EQ(report.status, SolverStatus::Stalled);
+  o.timeLimitSeconds = 0.01;
+  SolverReport timed;
+  PgsOptions noStall;
+  noStall.stallWindow = 1 << 30;
+  const SolveOutcome out = PgsSolver(noStall).solve(p, o);
+  EXPECT_TRUE(out.report.timeLimitReached);
+  EXPECT_EQ(out.report.status, SolverStatus::MaxIterations);
+  EXPECT_LT(out.report.seconds, 1.0);
+}

@@ -1,0 +1,53 @@
+#include <gtest/gtest.h>
+#include <coulomb/solvers/PreparedProblem.hpp>
+#include <coulomb/solvers/Residual.hpp>
+
+#include <thread>
+
+using namespace coulomb::solvers;
+
+TEST(PreparedProblem, AnisotropicContactsBecomeIsotropic) {
+  ContactProblem p;
+  p.blocks = {ConstraintBlock::anisotropicContact(0.2, 0.8), ConstraintBlock::unilateral()};
+  Eigen::MatrixXd W = Eigen::MatrixXd::Identity(4, 4) * 2.0;
+  W(0, 3) = W(3, 0) = 0.5;
+  p.W = DelassusOperator::dense(W);
+  p.q = Eigen::Vector4d(-1, 2, 3, -1);
+  const PreparedProblem pp = PreparedProblem::from(p);
+  EXPECT_FALSE(pp.blocks[0].anisotropic);
+  EXPECT_DOUBLE_EQ(pp.blocks[0].mu, 1.0);
+  EXPECT_DOUBLE_EQ(pp.W.toDense()(1, 1), 2.0 * 0.2 * 0.2);
+  EXPECT_DOUBLE_EQ(pp.q[2], 3.0 * 0.8);
+  const Eigen::VectorXd r = Eigen::Vector4d(1, 0.1, -0.3, 2);
+  EXPECT_LT((pp.toOriginal(pp.fromOriginal(r)) - r).norm(), 1e-15);
+  // Same feasibility: projected prepared iterates are feasible for the elliptic cone.
+  Eigen::VectorXd x = Eigen::Vector4d(1, 5, 5, -1);
+  pp.project(x);
+  const Eigen::VectorXd xo = pp.toOriginal(x);
+  EXPECT_LE(std::hypot(xo[1] / 0.2, xo[2] / 0.8), xo[0] + 1e-14);
+  EXPECT_DOUBLE_EQ(x[3], 0.0);
+  EXPECT_DOUBLE_EQ(pp.maxDiagonal, 2.0);
+}
+
+TEST(PreparedProblem, ResidualEqualsCommonResidualWhenIsotropic) {
+  const ContactProblem p = ContactProblem::contacts(
+      DelassusOperator::dense(Eigen::MatrixXd::Identity(3, 3)), Eigen::Vector3d(-1, 3, 4), {0.5});
+  const PreparedProblem pp = PreparedProblem::from(p);
+  Eigen::VectorXd u;
+  const Eigen::VectorXd r = Eigen::Vector3d(0.5, 0.1, 0.2);
+  EXPECT_DOUBLE_EQ(pp.residual(r, u), commonResidual(p, r).relative);
+}
+
+TEST(SolveContext, TimeLimitAndHistory) {
+  SolverOptions o;
+  o.timeLimitSeconds = 1e-3;
+  o.recordHistory = true;
+  const SolveContext c(o, SolveContext::Clock::now());
+  SolverReport r;
+  std::this_thread::sleep_for(std::chrono::milliseconds(3));
+  EXPECT_TRUE(c.timeUp(r));
+  EXPECT_TRUE(r.timeLimitReached);
+  c.record(r, 1, 0.5);
+  ASSERT_EQ(r.history.size(), 1u);
+  EXPECT_EQ(c.maxIterations(7), 7);
+}

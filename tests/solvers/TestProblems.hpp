@@ -1,0 +1,61 @@
+#pragma once
+// Small problems shared by the solver tests (header-only helpers, no tests here).
+#include <coulomb/solvers/ContactProblem.hpp>
+#include <coulomb/solvers/io/Fc3dText.hpp>
+
+#include <Eigen/Dense>
+
+#include <random>
+#include <string>
+
+namespace coulomb::solvers::fixtures {
+
+inline ContactProblem singleContact(const Eigen::Matrix3d& W, const Eigen::Vector3d& q, double mu) {
+  return ContactProblem::contacts(DelassusOperator::dense(W), q, {mu}, "single");
+}
+
+// W = J M^-1 J^T and q = J v for `contacts` contacts and `dofs` degrees of freedom (random J, M).
+// When 3 contacts <= dofs (nu <= 1) the normals also get a bias -1 (any q is in range(J)); with
+// redundant contacts q stays in range(J), else the problem may have no solution (pitfall 12).
+inline ContactProblem randomMechanical(int contacts, int dofs, double mu, unsigned seed,
+                                       bool blockSparse = true) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  const int n = 3 * contacts;
+  Eigen::MatrixXd J(n, dofs);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < dofs; ++j) J(i, j) = g(rng);
+  Eigen::MatrixXd L(dofs, dofs);
+  for (int i = 0; i < dofs; ++i)
+    for (int j = 0; j < dofs; ++j) L(i, j) = 0.3 * g(rng);
+  const Eigen::MatrixXd Minv =
+      (L * L.transpose() + Eigen::MatrixXd::Identity(dofs, dofs)).inverse();
+  Eigen::VectorXd v(dofs);
+  for (int j = 0; j < dofs; ++j) v[j] = g(rng);
+  Eigen::MatrixXd W = J * Minv * J.transpose();
+  W = 0.5 * (W + W.transpose());
+  Eigen::VectorXd q = J * v;
+  if (n <= dofs)
+    for (int c = 0; c < contacts; ++c) q[3 * c] -= 1.0;  // mostly approaching contacts
+  std::vector<double> mus(contacts, mu);
+  DelassusOperator op = DelassusOperator::dense(W);
+  if (blockSparse)
+    op = DelassusOperator::blockSparse(op.toBlockSparse(std::vector<int>(contacts, 3)));
+  return ContactProblem::contacts(op, q, mus, "random");
+}
+
+inline ContactProblem loadFixture(const std::string& name) {
+  Fc3dReadResult r = readFc3dText(std::string(COULOMB_TEST_DATA_DIR) + "/fc3d/" + name + ".fc3d");
+  if (!r.problem) throw std::runtime_error(r.error);
+  return *r.problem;
+}
+
+inline const char* const kFixtures[] = {"FrictionContact3D_1c",
+                                        "FC3D_Example1",
+                                        "GFC3D_Example00_badly_scaled",
+                                        "Confeti-ex13-4contact-Fc3D-SBM",
+                                        "Rover1039",
+                                        "GFC3D_TwoRods1-condensed",
+                                        "OneObject-i1028-138"};
+
+}  // namespace coulomb::solvers::fixtures
