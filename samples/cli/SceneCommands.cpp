@@ -121,7 +121,8 @@ void run(const RunOptions& options) {
   const double perStep = scene.steps > 0 ? stepSeconds / static_cast<double>(scene.steps) : 0.0;
 
   std::cout << "scene " << scene.name << " (" << scene.source << "): " << world.bodyCount()
-            << " bodies, " << scene.steps << " steps of " << scene.settings.timeStep << " s\n"
+            << (world.bodyCount() == 1 ? " body, " : " bodies, ") << scene.steps << " steps of "
+            << scene.settings.timeStep << " s\n"
             << "  simulated " << world.time() << " s in " << stepSeconds << " s (" << perStep * 1e6
             << " us/step)\n"
             << "  kinetic energy " << initial.kineticEnergy << " -> " << final.kineticEnergy
