@@ -1,0 +1,29 @@
+#include <coulomb/engine/ImpulseApplier.hpp>
+
+namespace coulomb::engine {
+
+void applyImpulsesTo(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
+                     const Eigen::VectorXd& lambda, const geometry::BodyState& state,
+                     std::vector<Eigen::Vector3d>& linear, std::vector<Eigen::Vector3d>& angular) {
+  for (std::size_t k = 0; k < rows.blocks.size(); ++k) {
+    const joints::RowBlock& block = rows.blocks[k];
+    const auto impulse = lambda.segment(slots[k].offset, slots[k].rows);
+    for (const bool sideB : {false, true}) {
+      const geometry::BodyId& body = sideB ? block.bodyB : block.bodyA;
+      if (!body.valid() || body.index >= state.size() || !state.isDynamic(body.index)) continue;
+      const joints::RowJacobian& jac = sideB ? block.jacobianB : block.jacobianA;
+      // Generalised impulse J^T lambda = (linear impulse, angular impulse about the COM).
+      const Eigen::Vector3d p = jac.leftCols<3>().transpose() * impulse;
+      const Eigen::Vector3d l = jac.rightCols<3>().transpose() * impulse;
+      linear[body.index] += state.inverseMasses[body.index] * p;
+      angular[body.index] += state.worldInverseInertias[body.index] * l;
+    }
+  }
+}
+
+void applyImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
+                   const Eigen::VectorXd& lambda, geometry::BodyState& state) {
+  applyImpulsesTo(rows, slots, lambda, state, state.linearVelocities, state.angularVelocities);
+}
+
+}  // namespace coulomb::engine

@@ -1,0 +1,25 @@
+#pragma once
+// Position-level removal of contact penetration without adding kinetic energy: split impulse
+// (Catto, "Iterative Dynamics", GDC 2006; Bullet's splitImpulse). After the velocity solve, a
+// second, frictionless problem on the normal rows finds pseudo-impulses p >= 0 with
+//     W_NN p - beta max(depth - slop, 0) / h  >= 0  _|_  p >= 0,
+// whose pseudo-velocities M^-1 J_N^T p move the positions by h v_p and are then discarded: the
+// real velocities never see them, so a resting stack gains no energy from being pushed apart.
+#include <coulomb/engine/ContactRowsEmitter.hpp>
+#include <coulomb/engine/ProblemAssembler.hpp>
+#include <coulomb/geometry/BodyState.hpp>
+#include <coulomb/joints/RowSet.hpp>
+#include <coulomb/solvers/SolverReport.hpp>
+
+#include <vector>
+
+namespace coulomb::engine {
+
+/// Split impulse: moves the island's dynamic bodies out of penetration (positions and
+/// orientations only), given the contact rows of the step and their sources' depths.
+/// Returns the pseudo-solve's report (status, sweeps), or nullopt when nothing penetrates.
+std::optional<solvers::SolverReport> correctPenetration(
+    const joints::RowSet& contactRows, const std::vector<ContactRowSource>& sources,
+    const PenetrationSettings& settings, double h, geometry::BodyState& state);
+
+}  // namespace coulomb::engine

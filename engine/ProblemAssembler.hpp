@@ -1,0 +1,45 @@
+#pragma once
+// Rows -> solver problem: the one translation between joints/ and solvers/ (ARCHITECTURE.md 1).
+// W = J M^-1 J^T assembled block by block over the bodies the rows share, q = J v* + bias.
+// Dense for small islands, 3x3-block sparse for large ones. Static/kinematic bodies and the world
+// carry no unknowns (their inverse mass is 0), so their Jacobian halves never enter W.
+#include <coulomb/geometry/BodyState.hpp>
+#include <coulomb/joints/RowSet.hpp>
+#include <coulomb/solvers/ContactProblem.hpp>
+
+#include <vector>
+
+namespace coulomb::engine {
+
+struct AssemblySettings {
+  // [scalar unknowns] Islands with at most this many rows get a dense W (a dense 3x3 block loop
+  // is faster than sparse bookkeeping below ~100 rows); larger ones a block-sparse W.
+  int denseRowLimit = 96;
+};
+
+/// Where each row block landed in the problem: its first unknown (offset into r) and row count.
+struct RowBlockSlot {
+  int offset = 0;
+  int rows = 0;
+};
+
+struct AssembledProblem {
+  solvers::ContactProblem problem;
+  std::vector<RowBlockSlot> slots;  // one per RowSet block, in order
+  int degreesOfFreedom = 0;         // 6 x (dynamic bodies touched), the m of nu = 3n/m
+};
+
+class ProblemAssembler {
+ public:
+  explicit ProblemAssembler(AssemblySettings settings = {}) : settings_(settings) {}
+
+  /// The rows' bodies index `state` by BodyId::index; an invalid id is the world. Warm starts
+  /// are taken from each block's `warmStart` when all blocks have one of the right size.
+  [[nodiscard]] AssembledProblem assemble(const joints::RowSet& rows,
+                                          const geometry::BodyState& state) const;
+
+ private:
+  AssemblySettings settings_;
+};
+
+}  // namespace coulomb::engine
