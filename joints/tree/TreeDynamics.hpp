@@ -1,0 +1,36 @@
+#pragma once
+// Dynamics of an Articulation in joint space:  M(q) qdd + h(q, qd) = tau + J^T f_ext,
+// with h = C(q, qd) qd + g(q) + damping * qd and M including each joint's armature on its
+// diagonal. Three classic algorithms (Featherstone, "Rigid Body Dynamics Algorithms", 2008):
+//   forwardDynamics   articulated-body algorithm, O(n)           ch. 7, Table 7.1
+//   inverseDynamics   recursive Newton-Euler algorithm, O(n)      ch. 5, Table 5.1
+//   massMatrix        composite-rigid-body algorithm             ch. 6, Table 6.2
+// Gravity enters as a fictitious base acceleration a_0 = -g (sec. 5.3). External wrenches are
+// one spatial force per link in link coordinates (torque about the link origin; force), see
+// linkWrenchFromPointForce; an empty span means none. Inputs are checked (sizes, finiteness):
+// std::invalid_argument names the link/joint; a joint whose subtree has no inertia along its
+// motion (S^T I^A S singular) throws std::domain_error naming the joint instead of a NaN.
+#include <coulomb/joints/tree/Articulation.hpp>
+
+#include <span>
+
+namespace coulomb::joints::tree {
+
+/// qdd (nv) by the articulated-body algorithm.
+Eigen::VectorXd forwardDynamics(const Articulation& articulation, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& qd, const Eigen::VectorXd& tau,
+                                std::span<const geometry::Vector6d> linkWrenches = {});
+
+/// tau (nv) that produces qdd, by the recursive Newton-Euler algorithm.
+Eigen::VectorXd inverseDynamics(const Articulation& articulation, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
+                                std::span<const geometry::Vector6d> linkWrenches = {});
+
+/// h(q, qd) = inverseDynamics(q, qd, 0): Coriolis, centrifugal, gravity and damping forces.
+Eigen::VectorXd biasForces(const Articulation& articulation, const Eigen::VectorXd& q,
+                           const Eigen::VectorXd& qd);
+
+/// The joint-space inertia matrix M(q) (nv x nv, symmetric positive definite), by CRBA.
+Eigen::MatrixXd massMatrix(const Articulation& articulation, const Eigen::VectorXd& q);
+
+}  // namespace coulomb::joints::tree
