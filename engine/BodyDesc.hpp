@@ -31,6 +31,8 @@ struct BodyDesc {
   /// Explicit mass, COM (reference frame) and inertia about the COM (reference axes); overrides
   /// the density. Required for a dynamic body without finite shapes.
   std::optional<geometry::SpatialInertia> mass;
+  /// Contact solver for this body's island ("" = the world's WorldSettings::solver).
+  std::string solver;
 };
 
 }  // namespace coulomb::engine

@@ -1,10 +1,27 @@
 #pragma once
-// What one World::step did. Later stages (islands, contacts, solver reports, fallbacks) add their
-// fields here as they land (ARCHITECTURE.md section 2).
+// What one World::step did: per island, the solver used and why, the fallbacks tried, status,
+// iterations, time and the common residual; plus what the collision stage found and skipped.
+#include <coulomb/geometry/CollisionPipeline.hpp>
+#include <coulomb/solvers/SolverReport.hpp>
+
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace coulomb::engine {
+
+struct IslandReport {
+  std::int32_t island = 0;      // island id of this step (ordered by smallest body index)
+  std::size_t bodies = 0;       // dynamic bodies in the island
+  std::size_t contacts = 0;     // contact points (row blocks)
+  int unknowns = 0;             // scalar unknowns of its problem
+  int degreesOfFreedom = 0;     // m of nu = 3n/m
+  std::string reason;           // why this solver (SolverChooser)
+  solvers::SolverReport solve;  // report of the attempt whose answer was applied
+  std::vector<solvers::SolverReport> attempts;  // every attempt, in order (fallbacks = size - 1)
+  double penetrationSeconds = 0.0;              // [s] split-impulse correction
+};
 
 struct StepReport {
   std::uint64_t stepIndex = 0;    // index of this step (0 for the first)
@@ -12,6 +29,16 @@ struct StepReport {
   double time = 0.0;              // [s] simulated time at the end of the step
   std::size_t dynamicBodies = 0;  // bodies integrated under forces
   std::size_t kinematicBodies = 0;
+  geometry::CollisionStats collision;                         // pairs, manifolds, points
+  std::vector<geometry::CollisionFailure> collisionFailures;  // pairs skipped this step
+  std::vector<IslandReport> islands;
+  double seconds = 0.0;  // [s] wall clock of the whole step
+
+  [[nodiscard]] std::size_t fallbacks() const {
+    std::size_t n = 0;
+    for (const IslandReport& i : islands) n += i.attempts.empty() ? 0 : i.attempts.size() - 1;
+    return n;
+  }
 };
 
 }  // namespace coulomb::engine

@@ -1,22 +1,48 @@
 #include <coulomb/engine/BodyBuilder.hpp>
 #include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/ImpulseApplier.hpp>
+#include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/World.hpp>
 #include <coulomb/integrators/FreeMotion.hpp>
 #include <coulomb/integrators/PositionUpdate.hpp>
+#include <coulomb/solvers/SolveWithFallback.hpp>
+#include <coulomb/solvers/SolverChooser.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace coulomb::engine {
 
 using geometry::BodyId;
 
-World::World(WorldSettings settings) : settings_(std::move(settings)) {
+World::World(WorldSettings settings)
+    : settings_(std::move(settings)), collision_(settings_.collision) {
   if (auto problem = settings_.validate()) throw CoulombError("world settings: " + *problem);
+  if (settings_.solver != "auto" && !registry_.find(settings_.solver))
+    throw CoulombError("world settings: unknown solver '" + settings_.solver +
+                       "' (see `coulomb solvers`)");
+}
+
+void World::setSolver(const std::string& solver) {
+  if (solver != "auto" && !registry_.find(solver))
+    throw CoulombError("setSolver: unknown solver '" + solver + "' (see `coulomb solvers`)");
+  settings_.solver = solver;
+}
+
+void World::setSolverOverride(BodyId id, const std::string& solver) {
+  const std::size_t i = slotOf(id);
+  if (!solver.empty() && solver != "auto" && !registry_.find(solver))
+    throw CoulombError("setSolverOverride: unknown solver '" + solver + "' for body '" + names_[i] +
+                       "' (see `coulomb solvers`)");
+  solverOverrides_[i] = solver;
 }
 
 BodyId World::createBody(const BodyDesc& desc) {
   ResolvedBody body = resolveBody(desc, settings_);  // throws before anything is changed
+  if (!desc.solver.empty() && desc.solver != "auto" && !registry_.find(desc.solver))
+    throw CoulombError("body '" + desc.name + "': unknown solver '" + desc.solver +
+                       "' (see `coulomb solvers`)");
   std::size_t slot = state_.size();
   if (!freeSlots_.empty()) {
     const auto lowest = std::min_element(freeSlots_.begin(), freeSlots_.end());
@@ -26,10 +52,12 @@ BodyId World::createBody(const BodyDesc& desc) {
     generations_.push_back(0);
     names_.emplace_back();
     masses_.emplace_back();
+    solverOverrides_.emplace_back();
   }
   state_.assign(slot, desc.motionType, body.comPose, desc.linearVelocity, desc.angularVelocity,
                 body.massProperties.mass, body.massProperties.inertiaAboutCom);
   names_[slot] = desc.name;
+  solverOverrides_[slot] = desc.solver;
   masses_[slot] = body.massProperties;
   const BodyId id{static_cast<std::uint32_t>(slot), generations_[slot]};
   for (ResolvedShape& s : body.shapes) {
@@ -141,6 +169,7 @@ std::uint64_t World::stateHash() const {
 StepReport World::step(double h) {
   if (!std::isfinite(h) || h <= 0.0)
     throw CoulombError("step: h must be finite and > 0 s (got " + std::to_string(h) + ")");
+  const auto started = std::chrono::steady_clock::now();
   StepReport report;
   report.stepIndex = stepCount_;
   report.timeStep = h;
@@ -149,15 +178,80 @@ StepReport World::step(double h) {
     if (state_.alive[i] != 0 && state_.motionTypes[i] == geometry::MotionType::Kinematic)
       ++report.kinematicBodies;
   }
-  integrators::predictFreeVelocities(state_, settings_.gravity, h);  // v*
-  // Later stages (ARCHITECTURE.md section 2): broad phase, narrow phase, manifolds, islands,
-  // row emission, assembly, solve with fallback, impulse application (v* -> v+).
-  integrators::integratePositions(state_, h);  // q+ from v+
+
+  integrators::predictFreeVelocities(state_, settings_.gravity, h);                 // v*
+  collision_.step(colliders_, state_.poses, [this](const auto& a, const auto& b) {  // manifolds
+    return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index);
+  });
+  const std::vector<Island> islands = islandBuilder_.build(dynamicMask(), contactEdges());
+  std::vector<joints::RowSet> rows(islands.size());
+  std::vector<std::vector<ContactRowSource>> sources(islands.size());
+  for (std::size_t k = 0; k < islands.size(); ++k)  // v* -> v+
+    report.islands.push_back(solveIsland(islands[k], h, rows[k], sources[k]));
+  integrators::integratePositions(state_, h);     // x+ from v+
+  correctPenetrations(h, rows, sources, report);  // split impulse
+
   state_.clearForces();
+  report.collision = collision_.diagnostics().stats;
+  report.collisionFailures = collision_.diagnostics().failures;
   ++stepCount_;
   time_ += h;
   report.time = time_;
+  report.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return report;
+}
+
+IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& rows,
+                                std::vector<ContactRowSource>& sources) {
+  auto& manifolds = collision_.cache().manifolds();
+  rows = emitContactRows(island, manifolds, state_, settings_.contact, h, sources);
+  AssembledProblem assembled = assembler_.assemble(rows, state_);  // W = J M^-1 J^T, q = J v*
+  const std::string& override = solverOverrides_[island.bodies.front()];
+  const solvers::SolvePlan plan = solvers::SolverChooser().choose(
+      assembled.problem, {assembled.degreesOfFreedom},
+      override.empty() ? settings_.solver : override, settings_.solverOptions);
+  solvers::PlanOutcome outcome = solvers::solveWithFallback(assembled.problem, plan, registry_);
+  applyImpulses(rows, assembled.slots, outcome.best.impulses, state_);  // v+ = v* + M^-1 J^T r
+  storeContactImpulses(rows, assembled.slots, outcome.best.impulses, sources, manifolds);
+
+  IslandReport report;
+  report.island = island.id;
+  report.bodies = island.bodies.size();
+  report.contacts = rows.blocks.size();
+  report.unknowns = assembled.problem.size();
+  report.degreesOfFreedom = assembled.degreesOfFreedom;
+  report.reason = plan.reason;
+  report.solve = std::move(outcome.best.report);
+  report.attempts = std::move(outcome.attempts);
+  return report;
+}
+
+void World::correctPenetrations(double h, std::vector<joints::RowSet>& rows,
+                                std::vector<std::vector<ContactRowSource>>& sources,
+                                StepReport& report) {
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto started = std::chrono::steady_clock::now();
+    correctPenetration(rows[k], sources[k], settings_.contact.penetration, h, state_);
+    report.islands[k].penetrationSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
+}
+
+std::vector<ConstraintEdge> World::contactEdges() const {
+  const auto& manifolds = collision_.cache().manifolds();
+  std::vector<ConstraintEdge> edges;
+  edges.reserve(manifolds.size());
+  for (const geometry::ContactManifold& m : manifolds)
+    edges.push_back(
+        {static_cast<std::int32_t>(m.bodyA.index), static_cast<std::int32_t>(m.bodyB.index)});
+  return edges;
+}
+
+std::vector<std::uint8_t> World::dynamicMask() const {
+  std::vector<std::uint8_t> mask(state_.size());
+  for (std::size_t i = 0; i < state_.size(); ++i) mask[i] = state_.isDynamic(i) ? 1 : 0;
+  return mask;
 }
 
 }  // namespace coulomb::engine

@@ -2,10 +2,15 @@
 // The World owns the body state, the colliders and the settings, and advances them in time.
 // step() reads as the data flow of ARCHITECTURE.md section 2 with the stages that exist so far.
 #include <coulomb/engine/BodyDesc.hpp>
+#include <coulomb/engine/ContactRowsEmitter.hpp>
+#include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Collider.hpp>
+#include <coulomb/geometry/CollisionPipeline.hpp>
+#include <coulomb/solvers/SolverRegistry.hpp>
 
 #include <cstdint>
 #include <string>
@@ -58,7 +63,25 @@ class World {
   /// The id of the body in slot `index` (for iterating over state() arrays), or an invalid id.
   [[nodiscard]] geometry::BodyId idAt(std::size_t index) const;
 
+  /// The persistent contact manifolds of the last step (points, normals, depths, impulses).
+  [[nodiscard]] const std::vector<geometry::ContactManifold>& contacts() const {
+    return collision_.cache().manifolds();
+  }
+  /// The solver registry islands are solved with; add entries to use your own solvers by name.
+  [[nodiscard]] solvers::SolverRegistry& solverRegistry() { return registry_; }
+  /// Solver for the island of this body ("" = WorldSettings::solver). When an island holds
+  /// bodies with different overrides, the one of its smallest body index wins.
+  void setSolverOverride(geometry::BodyId id, const std::string& solver);
+  void setSolver(const std::string& solver);  // WorldSettings::solver, validated
+
  private:
+  /// The per-island stages of step(): rows, assembly, solver plan, solve, impulses, warm starts.
+  IslandReport solveIsland(const Island& island, double h, joints::RowSet& rows,
+                           std::vector<ContactRowSource>& sources);
+  [[nodiscard]] std::vector<ConstraintEdge> contactEdges() const;
+  [[nodiscard]] std::vector<std::uint8_t> dynamicMask() const;
+  void correctPenetrations(double h, std::vector<joints::RowSet>& rows,
+                           std::vector<std::vector<ContactRowSource>>& sources, StepReport& report);
   std::size_t slotOf(geometry::BodyId id) const;  // throws for a stale id
 
   WorldSettings settings_;
@@ -69,6 +92,11 @@ class World {
   std::vector<geometry::SpatialInertia> masses_;  // per slot: mass, COM in the reference frame
   std::vector<geometry::Collider> colliders_;
   std::uint32_t colliderCounter_ = 0;
+  std::vector<std::string> solverOverrides_;  // per slot; "" = settings_.solver
+  geometry::CollisionPipeline collision_;
+  IslandBuilder islandBuilder_;
+  ProblemAssembler assembler_;
+  solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
   double time_ = 0.0;
   std::uint64_t stepCount_ = 0;
 };

@@ -16,6 +16,20 @@ std::optional<std::string> WorldSettings::validate() const {
   } else if (!std::isfinite(unitQuaternionTolerance) || unitQuaternionTolerance < 0.0) {
     out << "unit quaternion tolerance must be finite and >= 0 (got " << unitQuaternionTolerance
         << ")";
+  } else if (solver.empty()) {
+    out << "solver must be \"auto\" or a solver name (see `coulomb solvers`)";
+  } else if (auto bad = solvers::validateOptions(solverOptions)) {
+    out << "solver options: " << *bad;
+  } else if (!std::isfinite(contact.restitutionThreshold) || contact.restitutionThreshold < 0.0) {
+    out << "restitution threshold must be finite and >= 0 m/s (got " << contact.restitutionThreshold
+        << ")";
+  } else if (!(contact.penetration.beta >= 0.0 && contact.penetration.beta <= 1.0)) {
+    out << "penetration beta must be in [0, 1] (got " << contact.penetration.beta << ")";
+  } else if (!std::isfinite(contact.penetration.slop) || contact.penetration.slop < 0.0) {
+    out << "penetration slop must be finite and >= 0 m (got " << contact.penetration.slop << ")";
+  } else if (!std::isfinite(collision.speculativeMargin) || collision.speculativeMargin < 0.0) {
+    out << "speculative margin must be finite and >= 0 m (got " << collision.speculativeMargin
+        << ")";
   } else {
     return std::nullopt;
   }

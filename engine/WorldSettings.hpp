@@ -1,5 +1,9 @@
 #pragma once
 // Every tunable of a World, with its unit, default and the reason for the default.
+#include <coulomb/engine/ContactSettings.hpp>
+#include <coulomb/geometry/CollisionPipeline.hpp>
+#include <coulomb/solvers/SolverOptions.hpp>
+
 #include <Eigen/Core>
 
 #include <optional>
@@ -19,6 +23,25 @@ struct WorldSettings {
   /// [-] Largest accepted | |q| - 1 | of a body's orientation quaternion; the quaternion is then
   /// normalised. Larger deviations are an error (a silent renormalisation hides typos).
   double unitQuaternionTolerance = 1e-6;
+
+  /// Contact solver for every island: "auto" (SolverChooser picks per island and says why) or a
+  /// registry name (`coulomb solvers`). A body's own `solver` overrides it for its island.
+  std::string solver = "auto";
+  /// Common solver options per island. Default tolerance 1e-6 on the common relative residual
+  /// (far below what changes a trajectory visibly, and reached in a few warm-started sweeps on
+  /// stacks); 0 iterations = each solver's own default; no time limit.
+  solvers::SolverOptions solverOptions = defaultSimulationSolverOptions();
+  /// Restitution, speculative gaps and penetration correction (docs/tuning.md).
+  ContactSettings contact;
+  /// Speculative margin and contact-matching distances of the collision layer.
+  geometry::CollisionSettings collision;
+
+  static solvers::SolverOptions defaultSimulationSolverOptions() {
+    solvers::SolverOptions options;
+    options.tolerance = 1e-6;
+    options.maxIterations = 0;
+    return options;
+  }
 
   /// nullopt if every value is usable, else a message naming the first bad one.
   [[nodiscard]] std::optional<std::string> validate() const;

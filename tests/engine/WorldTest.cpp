@@ -54,7 +54,9 @@ TEST(World, StaticAndKinematicBodiesIgnoreGravity) {
 }
 
 TEST(World, ForcesAndTorquesActForOneStep) {
-  World world(engine::WorldSettings{Eigen::Vector3d::Zero()});
+  engine::WorldSettings noGravity;
+  noGravity.gravity.setZero();
+  World world(noGravity);
   BodyDesc desc;
   desc.mass = geometry::SpatialInertia{2.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()};
   const auto id = world.createBody(desc);
