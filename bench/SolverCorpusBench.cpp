@@ -4,9 +4,14 @@
 // reference (SICONOS_REFERENCE.tsv of the folder, when present) and checks that
 // solvers::commonResidual agrees with the reference fc3d_natural_map_residual.
 //
-//   SolverCorpusBench FOLDER [--solvers pgs,bgs,ac_newton] [--tol 1e-8] [--time-limit 60]
+// `auto` (SolverChooser + solveWithFallback, every attempt's time and iterations summed) is one
+// more column; the summary compares it with the fastest converging solver of each problem.
+//
+//   SolverCorpusBench FOLDER [--solvers pgs,bgs,ac_newton,auto] [--tol 1e-8] [--time-limit 60]
 //                     [--repeats 5] [--max-iter N] [--out table.md] [--only NAME]
 #include <coulomb/solvers/Residual.hpp>
+#include <coulomb/solvers/SolveWithFallback.hpp>
+#include <coulomb/solvers/SolverChooser.hpp>
 #include <coulomb/solvers/SolverRegistry.hpp>
 #include <coulomb/solvers/io/Fc3dText.hpp>
 
@@ -147,15 +152,24 @@ int main(int argc, char** argv) {
     check(Eigen::VectorXd::Zero(problem.size()), "r = 0");
     for (const std::string& name : solvers) {
       auto solver = registry.create(name);
-      if (!solver) {
+      if (!solver && name != "auto") {
         std::cerr << "unknown solver " << name << "\n";
         return 2;
       }
-      SolveOutcome first = solver->solve(problem, options);
+      auto solveOnce = [&]() {
+        if (solver) return solver->solve(problem, options);
+        const SolvePlan plan = SolverChooser().choose(problem, {}, "auto", options);
+        const PlanOutcome planned = solveWithFallback(problem, plan, registry);
+        SolveOutcome o = planned.best;
+        o.report.solver = "auto";
+        o.report.seconds = planned.seconds;
+        o.report.iterations = planned.iterations();
+        return o;
+      };
+      SolveOutcome first = solveOnce();
       std::vector<double> times{first.report.seconds};
       const int reps = first.report.seconds < 0.5 ? repeats : 1;
-      for (int k = 1; k < reps; ++k)
-        times.push_back(solver->solve(problem, options).report.seconds);
+      for (int k = 1; k < reps; ++k) times.push_back(solveOnce().report.seconds);
       std::sort(times.begin(), times.end());
       first.report.seconds = times[times.size() / 2];
       check(first.impulses, name + " solution");
@@ -216,6 +230,39 @@ int main(int argc, char** argv) {
        << " | " << fmt("%.3g", ours[0]) << " / " << fmt("%.3g", theirs[0]) << " (" << both[0]
        << ") | " << fmt("%.3g", ours[1]) << " / " << fmt("%.3g", theirs[1]) << " (" << both[1]
        << ") |\n";
+  }
+  // auto against the fastest converging named solver of each problem (issue 6 target: 1.5x).
+  if (std::find(solvers.begin(), solvers.end(), "auto") != solvers.end()) {
+    double autoTotal = 0, bestTotal = 0;
+    int counted = 0, autoConverged = 0;
+    std::string slowest;
+    double worstRatio = 0;
+    for (const auto& [nc, path] : files) {
+      const std::string problemName = path.stem().string();
+      double best = -1, mine = -1;
+      bool mineOk = false;
+      for (const Row& r : rows) {
+        if (r.problem != problemName) continue;
+        if (r.solver == "auto") {
+          mine = r.report.seconds;
+          mineOk = r.report.residual <= tol;
+        } else if (r.report.residual <= tol && (best < 0 || r.report.seconds < best)) {
+          best = r.report.seconds;
+        }
+      }
+      autoConverged += mineOk;
+      if (best < 0 || mine < 0) continue;
+      ++counted;
+      autoTotal += mine;
+      bestTotal += best;
+      if (mine / best > worstRatio) worstRatio = mine / best, slowest = problemName;
+    }
+    md << "\nauto: converged on " << autoConverged << " / " << files.size() << "; on the "
+       << counted << " problems some named solver converges, auto took " << fmt("%.3g", autoTotal)
+       << " s against " << fmt("%.3g", bestTotal)
+       << " s for the fastest converging solver of each problem (ratio "
+       << fmt("%.2f", bestTotal > 0 ? autoTotal / bestTotal : 0.0) << "; worst single problem "
+       << fmt("%.1f", worstRatio) << "x, " << slowest << ").\n";
   }
   md << "\nResidual check: solvers::commonResidual vs fc3d_natural_map_residual, worst relative "
         "difference "

@@ -1,12 +1,27 @@
 #include <coulomb/solvers/SolveWithFallback.hpp>
 
+#include <coulomb/solvers/Residual.hpp>
+
+#include <algorithm>
+#include <chrono>
+
 namespace coulomb::solvers {
+
+int PlanOutcome::iterations() const {
+  int total = 0;
+  for (const SolverReport& a : attempts) total += a.iterations;
+  return total;
+}
 
 PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
                               const SolverRegistry& registry) {
+  const auto started = std::chrono::steady_clock::now();
   PlanOutcome out;
   bool haveBest = false;
-  for (const std::string& name : plan.solvers) {
+  std::string tried;
+  for (size_t attempt = 0; attempt < plan.solvers.size(); ++attempt) {
+    const std::string& name = plan.solvers[attempt];
+    if (haveBest && out.best.report.converged()) break;
     const std::unique_ptr<ContactSolver> solver = registry.create(name);
     if (!solver) {
       SolverReport missing;
@@ -16,23 +31,43 @@ PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& pl
       out.attempts.push_back(missing);
       continue;
     }
-    SolveOutcome outcome = haveBest ? solver->solve(problem, plan.options, out.best.impulses)
-                                    : solver->solve(problem, plan.options);
+    // The time limit is for the whole plan: each attempt gets what is left.
+    SolverOptions options = plan.options;
+    const double used =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (used >= options.timeLimitSeconds && haveBest) break;
+    options.timeLimitSeconds = std::max(options.timeLimitSeconds - used, 1e-6);
+    if (attempt < plan.iterationCaps.size() && plan.iterationCaps[attempt] > 0)
+      options.maxIterations = plan.iterationCaps[attempt];
+    SolveOutcome outcome = haveBest ? solver->solve(problem, options, out.best.impulses)
+                                    : solver->solve(problem, options);
     out.attempts.push_back(outcome.report);
+    tried += (tried.empty() ? "" : " -> ") + name + " (" + statusName(outcome.report.status) + ")";
     if (outcome.report.status == SolverStatus::InvalidProblem) {
       out.best = std::move(outcome);  // the problem itself is wrong: no solver will do better
-      return out;
+      haveBest = true;
+      break;
     }
+    if (outcome.report.status == SolverStatus::NotApplicable) continue;
     if (!haveBest || outcome.report.residual < out.best.report.residual) {
       out.best = std::move(outcome);
       haveBest = true;
     }
-    if (out.best.report.converged()) break;
   }
-  if (!haveBest && out.best.impulses.size() != problem.size())
+  if (!haveBest) {  // nothing could run: r = 0, measured, with the last attempt's status
     out.best.impulses = Eigen::VectorXd::Zero(problem.size());
+    if (!problem.validate()) {
+      const ResidualValue e = commonResidual(problem, out.best.impulses, out.best.velocities);
+      out.best.report.residual = e.relative;
+      out.best.report.absoluteResidual = e.absolute;
+    }
+    out.best.report.status = SolverStatus::NotApplicable;
+    out.best.report.note("no solver of the plan could run; r = 0 returned");
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (!plan.reason.empty()) out.best.report.note("plan: " + plan.reason);
   if (out.attempts.size() > 1)
-    out.best.report.note(std::to_string(out.attempts.size() - 1) + " fallback(s) tried");
+    out.best.report.note(std::to_string(out.attempts.size() - 1) + " fallback(s): " + tried);
   return out;
 }
 

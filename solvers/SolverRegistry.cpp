@@ -2,6 +2,7 @@
 
 #include <coulomb/solvers/bgs/BgsSolver.hpp>
 #include <coulomb/solvers/newton/AcNewtonSolver.hpp>
+#include <coulomb/solvers/newton/FbNewtonSolver.hpp>
 #include <coulomb/solvers/pgs/PgsSolver.hpp>
 
 #include <stdexcept>
@@ -18,6 +19,10 @@ SolverRegistry SolverRegistry::builtIn() {
          "Alart-Curnier nonsmooth Newton, Goldstein-Price search, regularized sparse LU "
          "(SOLVERS.md 5)",
          [] { return std::make_unique<AcNewtonSolver>(); }});
+  r.add({"fb_newton",
+         "Fischer-Burmeister nonsmooth Newton for second-order cones, cancellation-free "
+         "eigenvalue, Armijo search, shared Newton loop (SOLVERS.md 6)",
+         [] { return std::make_unique<FbNewtonSolver>(); }});
   return r;
 }
 

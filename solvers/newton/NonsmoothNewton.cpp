@@ -251,7 +251,18 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
         break;
       }
     }
-    // Goldstein-Price, Algorithm 5.2.
+    // Armijo (5.11): the Facchinei-Pang safeguard replaces a too-flat Newton direction by the
+    // steepest descent before the search.
+    const bool armijo = s.lineSearch == NewtonSettings::LineSearch::Armijo;
+    if (armijo && slope > -1e-8 * std::pow(d.norm(), 2.1)) {
+      d = -system.gradient(phi);
+      wd.setZero(n);
+      p.W.multiplyAdd(d, wd);
+      system.applyAB(wd, d, jd);
+      slope = phi.dot(jd);
+      ++steepest;
+    }
+    // Goldstein-Price, Algorithm 5.2, or Armijo halving (5.11).
     double alpha = 1.0, lo = 0.0, hi = std::numeric_limits<double>::infinity();
     double bestAlpha = 0.0, bestPsi = psi0;
     bool accepted = false;
@@ -262,6 +273,14 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
       const double psi = 0.5 * trialPhi.squaredNorm();
       if (psi < bestPsi) bestPsi = psi, bestAlpha = alpha;
       const double avg = (psi - psi0) / alpha;
+      if (armijo) {
+        if (psi <= psi0 + s.armijoC * alpha * slope) {
+          accepted = true;
+          break;
+        }
+        alpha *= 0.5;
+        continue;
+      }
       if (avg < s.m2 * slope) {
         lo = alpha;
       } else if (avg > s.m1 * slope) {

@@ -3,7 +3,8 @@
 // of SOLVERS.md on the reduced form, unknown r only): generalized Jacobian J = A W + B (5.5),
 // rows with J_i = e_i eliminated (5.7), the residual-scaled shift J_sigma = A (W + sigma I) + B
 // (5.8) that keeps redundant contacts (rank-deficient W) solvable, dense or sparse LU,
-// Goldstein-Price line search (Algorithm 5.2), stopping by (5.12) on the common residual.
+// Goldstein-Price (Algorithm 5.2) or Armijo (5.11) line search, stopping by (5.12) on the common
+// residual.
 #include <coulomb/solvers/PreparedProblem.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
 #include <coulomb/solvers/newton/NewtonFunction.hpp>
@@ -20,8 +21,13 @@ struct NewtonSettings {
   double constantRho = 1.0;
   // (5.8): sigma = min(maxShift, max(minShift, e_rel)) * max_i W_ii; 0/0 disables the shift.
   double minShift = 1e-12, maxShift = 1e-4;
-  int lineSearchTrials = 30;       // Algorithm 5.2, global
+  // Line search: Goldstein-Price (Algorithm 5.2, default for Alart-Curnier, whose merit is only
+  // piecewise smooth) or Armijo backtracking (5.11), preferred for Fischer-Burmeister (C^1 merit).
+  enum class LineSearch { GoldsteinPrice, Armijo };
+  LineSearch lineSearch = LineSearch::GoldsteinPrice;
+  int lineSearchTrials = 30;       // Algorithm 5.2, global; also the Armijo halvings
   double m1 = 0.1, m2 = 0.9;       // (5.10)
+  double armijoC = 1e-4;           // (5.11) sufficient-decrease constant
   int stallIterations = 20;        // (5.12): Stalled when the best e_rel fell by < 1 % ...
   double stallDecrease = 0.01;     // ... over this many iterations
   int denseThreshold = 300;        // unknowns left after elimination: dense LU below
