@@ -1,0 +1,102 @@
+#include <gtest/gtest.h>
+#include <coulomb/solvers/lemke/LemkeSolver.hpp>
+
+#include "TestProblems.hpp"
+
+#include <cmath>
+
+using namespace coulomb::solvers;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+// SOLVERS.md (7.4), one contact, W = I, mu = 0.5, n_d = 8.
+TEST(LemkeSolver, SingleContactTakeOffAndStickAreExact) {
+  const Eigen::Matrix3d W = Eigen::Matrix3d::Identity();
+  SolveOutcome out = LemkeSolver().solve(fixtures::singleContact(W, {0.3, 1, -2}, 0.5));
+  EXPECT_EQ(out.report.status, SolverStatus::Converged);
+  EXPECT_LT(out.impulses.norm(), 1e-14);
+  out = LemkeSolver().solve(fixtures::singleContact(W, {-1, 0.2, -0.1}, 0.5));
+  EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_LT((out.impulses - Eigen::Vector3d(1, -0.2, 0.1)).norm(), 1e-12);
+}
+
+TEST(LemkeSolver, SlidingAlongAFacetIsExact) {
+  const SolveOutcome out =
+      LemkeSolver().solve(fixtures::singleContact(Eigen::Matrix3d::Identity(), {-1, 2, 0}, 0.5));
+  EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_NEAR(out.impulses[1], -0.5, 1e-12);
+}
+
+// Sliding between two facets (22.5 degrees): the friction snaps to the polygon, its magnitude
+// is cos(pi/8) mu r_N, and the report shows the cone error next to an exact LCP.
+TEST(LemkeSolver, SlidingBetweenFacetsShowsTheConeError) {
+  const double a = kPi / 8;
+  const SolveOutcome out = LemkeSolver().solve(fixtures::singleContact(
+      Eigen::Matrix3d::Identity(), {-1, 2 * std::cos(a), 2 * std::sin(a)}, 0.5));
+  EXPECT_EQ(out.report.status, SolverStatus::Stalled);  // not converged on the exact cone
+  EXPECT_LT(out.report.nativeResidual, 1e-14);          // but the faceted LCP is solved
+  EXPECT_GT(out.report.residual, 1e-3);                 // and the exact-cone error is visible
+  const double friction = std::hypot(out.impulses[1], out.impulses[2]);
+  EXPECT_NEAR(friction / (0.5 * out.impulses[0]), std::cos(kPi / 8), 1e-9);
+  EXPECT_NE(out.report.message.find("faceted"), std::string::npos) << out.report.message;
+  // finer polygons shrink the error (proportional to n_d^-2)
+  LemkeOptions fine;
+  fine.frictionDirections = 32;
+  const SolveOutcome outFine = LemkeSolver(fine).solve(fixtures::singleContact(
+      Eigen::Matrix3d::Identity(), {-1, 2 * std::cos(a), 2 * std::sin(a)}, 0.5));
+  EXPECT_LT(outFine.report.residual, out.report.residual / 8);
+}
+
+// A body squeezed between two opposite contacts that both demand separation (bias on a null
+// direction of W, SOLVERS.md (7.7)): the ray is reported as a status with the reason.
+TEST(LemkeSolver, SqueezedBodyWithBiasEndsOnARay) {
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, 3);  // one body, 3 translational dofs
+  J(0, 0) = 1;                                      // contact 1 normal +x
+  J(1, 1) = 1;                                      // tangents
+  J(2, 2) = 1;
+  J(3, 0) = -1;  // contact 2 normal -x
+  J(4, 1) = 1;
+  J(5, 2) = 1;
+  const Eigen::MatrixXd W = J * J.transpose();
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(6);
+  ContactProblem noBias = ContactProblem::contacts(DelassusOperator::dense(W), q, {0.3, 0.3});
+  EXPECT_EQ(LemkeSolver().solve(noBias).report.status, SolverStatus::Converged);
+  q[0] = q[3] = -0.1;  // both ask for separation: impossible
+  const ContactProblem biased = ContactProblem::contacts(DelassusOperator::dense(W), q, {0.3, 0.3});
+  const SolveOutcome out = LemkeSolver().solve(biased);
+  EXPECT_EQ(out.report.status, SolverStatus::Stalled);
+  EXPECT_NE(out.report.message.find("RAY TERMINATION"), std::string::npos) << out.report.message;
+  EXPECT_TRUE(out.impulses.allFinite());
+}
+
+TEST(LemkeSolver, EqualityAndBoundedRows) {
+  // W = 2 I (5 x 5): a contact (stick), an equality row, a bounded row hitting its bound.
+  const Eigen::MatrixXd W = 2.0 * Eigen::MatrixXd::Identity(5, 5);
+  ContactProblem p;
+  p.W = DelassusOperator::dense(W);
+  p.q = (Eigen::VectorXd(5) << -2, 0.2, 0.0, 1.0, -4.0).finished();
+  p.blocks = {ConstraintBlock::contact(0.5), ConstraintBlock::equality(),
+              ConstraintBlock::bounded(-0.5, 0.5)};
+  const SolveOutcome out = LemkeSolver().solve(p);
+  EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_NEAR(out.impulses[0], 1.0, 1e-9);   // stick: u = 0
+  EXPECT_NEAR(out.impulses[3], -0.5, 1e-9);  // equality: 2 r + 1 = 0
+  EXPECT_NEAR(out.impulses[4], 0.5, 1e-9);   // wants 2, clamped to the upper bound
+}
+
+TEST(LemkeSolver, CorpusFixturesPivotToAnLcpSolution) {
+  for (const char* name : fixtures::kFixtures) {
+    const SolveOutcome out = LemkeSolver().solve(fixtures::loadFixture(name));
+    EXPECT_LT(out.report.nativeResidual, 1e-10) << name << ": " << out.report.message;
+    EXPECT_NE(out.report.status, SolverStatus::MaxIterations) << name;
+  }
+}
+
+TEST(LemkeSolver, TooLargeIsNotApplicable) {
+  LemkeOptions small;
+  small.maxLcpSize = 20;
+  const SolveOutcome out = LemkeSolver(small).solve(fixtures::randomMechanical(5, 30, 0.5, 1));
+  EXPECT_EQ(out.report.status, SolverStatus::NotApplicable);
+}
