@@ -28,6 +28,7 @@ void validateInertia(const TreeLink& link, int index) {
                                   ": a massless link's inertia must be symmetric and >= 0");
     return;
   }
+  if (inertia.inertiaAboutCom.isZero(0.0) && inertia.mass > 0.0) return;  // a point mass
   if (const auto problem = geometry::checkPhysicalValidity(inertia))
     throw std::invalid_argument(describe(link, index) + ": invalid inertia: " + *problem);
 }
