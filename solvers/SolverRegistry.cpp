@@ -5,6 +5,7 @@
 #include <coulomb/solvers/newton/AcNewtonSolver.hpp>
 #include <coulomb/solvers/newton/FbNewtonSolver.hpp>
 #include <coulomb/solvers/pgs/PgsSolver.hpp>
+#include <coulomb/solvers/staggered/StaggeredSolver.hpp>
 
 #include <stdexcept>
 
@@ -28,6 +29,10 @@ SolverRegistry SolverRegistry::builtIn() {
          "Lemke pivoting on the faceted-cone LCP (8 directions, Stewart-Trinkle slack rows), "
          "lexicographic anti-cycling (SOLVERS.md 7)",
          [] { return std::make_unique<LemkeSolver>(); }});
+  r.add({"staggered",
+         "staggered projections (Kaufman et al. 2008): normal and friction QPs by APGD with "
+         "restart (SOLVERS.md 8)",
+         [] { return std::make_unique<StaggeredSolver>(); }});
   return r;
 }
 
