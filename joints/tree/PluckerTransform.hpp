@@ -37,9 +37,21 @@ struct PluckerTransform {
     return out;
   }
   /// X^T I X: a spatial inertia (or articulated inertia) in B coordinates moved to A (eq. 2.66).
+  /// Block form: rotate the blocks of I = [A B; B^T C] by E, then shift by r:
+  /// X^T I X = [A' - B' rx + rx (B'^T - C' rx), B' + rx C'; B'^T - C' rx, C'] with A' = E^T A E...
   [[nodiscard]] geometry::Matrix6d transformInertiaToParent(const geometry::Matrix6d& i) const {
-    const geometry::Matrix6d x = matrix();
-    return x.transpose() * i * x;
+    const Eigen::Matrix3d et = e.transpose();
+    const Eigen::Matrix3d a = et * i.topLeftCorner<3, 3>() * e;
+    const Eigen::Matrix3d b = et * i.topRightCorner<3, 3>() * e;
+    const Eigen::Matrix3d c = et * i.bottomRightCorner<3, 3>() * e;
+    const Eigen::Matrix3d rx = geometry::skew(r);
+    const Eigen::Matrix3d lower = b.transpose() - c * rx;  // B'^T - C' rx
+    geometry::Matrix6d out;
+    out.topLeftCorner<3, 3>() = a - b * rx + rx * lower;
+    out.topRightCorner<3, 3>() = b + rx * c;
+    out.bottomLeftCorner<3, 3>() = lower;
+    out.bottomRightCorner<3, 3>() = c;
+    return out;
   }
   /// Composition: (this A -> B) then (next B -> C) gives A -> C.
   [[nodiscard]] PluckerTransform then(const PluckerTransform& next) const {
