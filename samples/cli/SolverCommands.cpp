@@ -1,5 +1,7 @@
 // `coulomb solvers` (the registry, one line each) and `coulomb solve FILE.fc3d` (one JSON line per
 // solver: problem, contacts, solver, status, iterations, seconds, common residual).
+#include <coulomb/solvers/SolveWithFallback.hpp>
+#include <coulomb/solvers/SolverChooser.hpp>
 #include <coulomb/solvers/SolverRegistry.hpp>
 #include <coulomb/solvers/io/Fc3dText.hpp>
 
@@ -72,14 +74,20 @@ void runSolve(const SolveArgs& a) {
   const solvers::ContactProblem& problem = *read.problem;
   const solvers::SolverRegistry registry = solvers::SolverRegistry::builtIn();
   std::vector<std::string> names;
+  const bool plan = a.solver == "auto" || a.solver.find(',') != std::string::npos ||
+                    (!a.solver.empty() && a.solver.back() == '!');
   if (a.solver == "all") {
     names = registry.names();
+    names.push_back("auto");
+  } else if (plan) {
+    names.push_back(a.solver);  // SolverChooser: auto, a chain "a,b" or "name!"
   } else if (registry.find(a.solver)) {
     names.push_back(a.solver);
   } else {
     std::string known;
     for (const std::string& n : registry.names()) known += " " + n;
-    throw CommandError("unknown solver '" + a.solver + "'; known:" + known + " (or all)");
+    throw CommandError("unknown solver '" + a.solver + "'; known:" + known +
+                       " (or all, auto, a chain a,b,c, or name! for no fallback)");
   }
   solvers::SolverOptions options;
   options.tolerance = a.tolerance;
@@ -89,13 +97,27 @@ void runSolve(const SolveArgs& a) {
   Eigen::VectorXd bestR;
   double bestResidual = std::numeric_limits<double>::infinity();
   for (const std::string& name : names) {
-    const solvers::SolveOutcome out = registry.create(name)->solve(problem, options);
+    solvers::SolveOutcome out;
+    std::string planFields;
+    if (registry.find(name)) {
+      out = registry.create(name)->solve(problem, options);
+    } else {  // a plan: the chooser's primary and fallbacks (SOLVERS.md section 9)
+      const solvers::SolvePlan chosen = solvers::SolverChooser().choose(problem, {}, name, options);
+      const solvers::PlanOutcome planned = solvers::solveWithFallback(problem, chosen, registry);
+      out = planned.best;
+      out.report.seconds = planned.seconds;
+      out.report.iterations = planned.iterations();
+      std::string tried;
+      for (const solvers::SolverReport& attempt : planned.attempts)
+        tried += (tried.empty() ? "" : ",") + jsonString(attempt.solver);
+      planFields = ",\"attempts\":[" + tried + "],\"reason\":" + jsonString(chosen.reason);
+    }
     const solvers::SolverReport& r = out.report;
     std::cout << "{\"problem\":" << jsonString(problem.name)
               << ",\"contacts\":" << problem.contactCount() << ",\"solver\":" << jsonString(name)
               << ",\"status\":" << jsonString(solvers::statusName(r.status))
               << ",\"iterations\":" << r.iterations << ",\"seconds\":" << jsonNumber(r.seconds)
-              << ",\"residual\":" << jsonNumber(r.residual) << "}" << std::endl;
+              << ",\"residual\":" << jsonNumber(r.residual) << planFields << "}" << std::endl;
     if (r.status == solvers::SolverStatus::InvalidProblem)
       throw CommandError(a.file + ": invalid problem: " + r.message);
     if (bestR.size() == 0 || r.residual < bestResidual) {
@@ -127,7 +149,11 @@ void registerSolverCommands(CLI::App& app) {
       "Solve a frictional contact problem (fc3d-text file) with one or all solvers; "
       "prints one JSON line per solver");
   solve->add_option("file", args->file, "problem file in the fc3d-text 1 format")->required();
-  solve->add_option("--solver", args->solver, "solver name (see `coulomb solvers`) or all")
+  solve
+      ->add_option(
+          "--solver", args->solver,
+          "solver name (see `coulomb solvers`), all, auto (per-problem choice with fallbacks), "
+          "a chain a,b,c, or name! (no fallback)")
       ->capture_default_str();
   solve->add_option("--tol", args->tolerance, "tolerance on the common relative residual")
       ->capture_default_str()
