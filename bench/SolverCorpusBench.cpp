@@ -114,7 +114,10 @@ int main(int argc, char** argv) {
     }
   }
   const SolverRegistry registry = SolverRegistry::builtIn();
-  if (solvers.empty()) solvers = registry.names();
+  if (solvers.empty()) {
+    solvers = registry.names();
+    solvers.push_back("auto");
+  }
   std::vector<std::pair<int, fs::path>> files;
   for (const auto& e : fs::directory_iterator(folder))
     if (e.path().extension() == ".fc3d" && (only.empty() || e.path().stem() == only)) {
