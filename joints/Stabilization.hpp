@@ -1,0 +1,55 @@
+#pragma once
+// How joint drift (position error C(x) != 0) is removed: the two policies of the survey
+// (Bender, Erleben, Trinkle 2014, "Interactive simulation of rigid body dynamics in computer
+// graphics", sec. 4.4.1). Chosen per world (WorldSettings::jointStabilization) and per joint
+// (JointDef::stabilization overrides). docs/tuning.md compares them with figures.
+#include <optional>
+#include <string>
+
+namespace coulomb::joints {
+
+enum class StabilizationMethod {
+  /// Bias beta C / h on the velocity rows (Baumgarte 1972; survey sec. 4.4.1): cheap, but the
+  /// bias does work, so it adds or removes energy, and a stiff beta makes chains jitter.
+  Baumgarte,
+  /// Impulse-based predicted-state correction (Bender et al. 2005, survey sec. 4.4.1, Fig. 11):
+  /// after the velocity solve, predict each joint's error at t+h, solve J M^-1 J^T p = -C/h and
+  /// iterate to a tolerance. With equality rows this is SHAKE: no energy is pumped in.
+  PredictedState,
+  /// Velocity rows only: the joints drift (for tests and comparisons).
+  None,
+};
+
+const char* stabilizationMethodName(StabilizationMethod method);
+std::optional<StabilizationMethod> stabilizationMethodFromName(const std::string& name);
+
+struct BaumgarteSettings {
+  /// [-] Fraction of the position error removed per step. Default 0.2: removes a gap within
+  /// ~10 steps without visible jitter (Box2D and Bullet's ERP use 0.2).
+  double beta = 0.2;
+  /// [m or rad] Error per row left alone. Default 0: a joint is meant to be exact (a slop only
+  /// helps contacts keep their manifold points).
+  double slop = 0.0;
+};
+
+struct PredictedStateSettings {
+  /// Largest number of correction solves per step. Default 20: the fixed-point iteration
+  /// contracts by about h |omega| per pass, so 1e-10 is reached in 5-10 passes at h |omega| < 0.1.
+  int iterations = 20;
+  /// [m or rad] Stop when every predicted joint error is below this. Default 1e-10: far below
+  /// any visible gap, and about the round-off of a 100-link chain's anchor positions.
+  double tolerance = 1e-10;
+};
+
+struct Stabilization {
+  /// Default PredictedState: it keeps chains closed without adding or losing energy (SCENES.md
+  /// A6: maximal-coordinate peers lose 57-96 % of a chain's energy with Baumgarte-style bias).
+  StabilizationMethod method = StabilizationMethod::PredictedState;
+  BaumgarteSettings baumgarte;
+  PredictedStateSettings predictedState;
+
+  /// nullopt if usable, else a message naming the first bad value.
+  [[nodiscard]] std::optional<std::string> validate() const;
+};
+
+}  // namespace coulomb::joints
