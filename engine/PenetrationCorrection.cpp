@@ -14,7 +14,8 @@ double baumgarteBias(const PenetrationSettings& settings, double depth, double h
 
 std::optional<solvers::SolverReport> correctPenetration(
     const joints::RowSet& contactRows, const std::vector<ContactRowSource>& sources,
-    const PenetrationSettings& settings, double h, geometry::BodyState& state) {
+    const PenetrationSettings& settings, double h, geometry::BodyState& state,
+    ArticulationStage* articulations) {
   if (settings.method != PenetrationMethod::SplitImpulse) return std::nullopt;
   joints::RowSet normals;
   for (std::size_t k = 0; k < contactRows.blocks.size(); ++k) {
@@ -34,7 +35,7 @@ std::optional<solvers::SolverReport> correctPenetration(
   for (const auto& b : normals.blocks) anyPenetration = anyPenetration || b.bias[0] < 0.0;
   if (!anyPenetration) return std::nullopt;
 
-  AssembledProblem assembled = ProblemAssembler().assemble(normals, state);
+  AssembledProblem assembled = ProblemAssembler().assemble(normals, state, articulations);
   // The pseudo problem starts from zero pseudo-velocity: q is the bias alone, not J v.
   for (std::size_t k = 0; k < normals.blocks.size(); ++k)
     assembled.problem.q[assembled.slots[k].offset] = normals.blocks[k].bias[0];
@@ -55,6 +56,8 @@ std::optional<solvers::SolverReport> correctPenetration(
         geometry::integrateWorldRotation(state.poses[i].rotation, angular[i], h);
     state.refreshWorldInertia(i);
   }
+  if (articulations != nullptr)
+    articulations->applyPseudoImpulses(normals, assembled.slots, outcome.impulses, h, state);
   return outcome.report;
 }
 

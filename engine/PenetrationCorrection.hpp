@@ -5,6 +5,7 @@
 //     W_NN p - beta max(depth - slop, 0) / h  >= 0  _|_  p >= 0,
 // whose pseudo-velocities M^-1 J_N^T p move the positions by h v_p and are then discarded: the
 // real velocities never see them, so a resting stack gains no energy from being pushed apart.
+#include <coulomb/engine/ArticulationStage.hpp>
 #include <coulomb/engine/ContactRowsEmitter.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/geometry/BodyState.hpp>
@@ -18,8 +19,10 @@ namespace coulomb::engine {
 /// Split impulse: moves the island's dynamic bodies out of penetration (positions and
 /// orientations only), given the contact rows of the step and their sources' depths.
 /// Returns the pseudo-solve's report (status, sweeps), or nullopt when nothing penetrates.
+/// `articulations`: rows on link proxies move their trees' joint positions as well.
 std::optional<solvers::SolverReport> correctPenetration(
     const joints::RowSet& contactRows, const std::vector<ContactRowSource>& sources,
-    const PenetrationSettings& settings, double h, geometry::BodyState& state);
+    const PenetrationSettings& settings, double h, geometry::BodyState& state,
+    ArticulationStage* articulations = nullptr);
 
 }  // namespace coulomb::engine

@@ -1,3 +1,4 @@
+#include <coulomb/engine/ArticulationStage.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 
 #include <Eigen/Geometry>
@@ -45,7 +46,8 @@ void appendSolverBlocks(const joints::RowBlock& block, std::vector<solvers::Cons
 }  // namespace
 
 AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
-                                            const geometry::BodyState& state) const {
+                                            const geometry::BodyState& state,
+                                            const ArticulationStage* articulations) const {
   AssembledProblem out;
   const auto blockCount = static_cast<int>(rows.blocks.size());
   out.slots.resize(blockCount);
@@ -100,6 +102,10 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
       }
     }
   }
+
+  // Rows on articulation links: the trees' joint-space part (their proxies carry no unknowns).
+  if (articulations != nullptr)
+    out.degreesOfFreedom += articulations->addDelassusBlocks(rows, state, pairBlocks);
 
   if (size <= settings_.denseRowLimit) {
     Eigen::MatrixXd W = Eigen::MatrixXd::Zero(size, size);

@@ -11,6 +11,8 @@
 
 namespace coulomb::engine {
 
+class ArticulationStage;
+
 struct AssemblySettings {
   // [scalar unknowns] Islands with at most this many rows get a dense W (a dense 3x3 block loop
   // is faster than sparse bookkeeping below ~100 rows); larger ones a block-sparse W.
@@ -35,8 +37,10 @@ class ProblemAssembler {
 
   /// The rows' bodies index `state` by BodyId::index; an invalid id is the world. Warm starts
   /// are taken from each block's `warmStart` when all blocks have one of the right size.
+  /// `articulations`: rows on link proxies get the trees' part of W (ArticulationStage.hpp).
   [[nodiscard]] AssembledProblem assemble(const joints::RowSet& rows,
-                                          const geometry::BodyState& state) const;
+                                          const geometry::BodyState& state,
+                                          const ArticulationStage* articulations = nullptr) const;
 
  private:
   AssemblySettings settings_;

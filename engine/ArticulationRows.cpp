@@ -1,0 +1,298 @@
+// Rows on articulation links: joint limits and loop closures as row blocks on the link proxies,
+// the trees' part of the Delassus operator and the impulses on joint velocities.
+//
+// A row side on link l (proxy origin c = the link frame origin) with body-twist Jacobian J_side
+// (k x 6, (linear, angular) about c) is the joint-space row J_side * twistJacobian(l, c)
+// (k x nv; docs/articulations.md). For every tree touched by an island's rows, the joint-space
+// rows J_t give W += J_t M^-1 J_t^T column by column through impulse-level ABA
+// (ArticulationImpulse::applyInverseMass, Featherstone 2008 Table 7.1 with zero velocity and
+// gravity: one O(n) pass per row, M never formed), and the solved impulses give
+// qd += M^-1 J_t^T lambda in one pass per tree.
+#include <coulomb/engine/ArticulationStage.hpp>
+#include <coulomb/engine/ProblemAssembler.hpp>
+#include <coulomb/integrators/ArticulationIntegrator.hpp>
+#include <coulomb/joints/tree/ArticulationImpulse.hpp>
+#include <coulomb/joints/tree/TreeKinematics.hpp>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+
+namespace coulomb::engine {
+
+using joints::RowBlock;
+using joints::RowJacobian;
+using joints::RowKind;
+using joints::RowVector;
+using joints::tree::TreeJointType;
+
+namespace {
+// A limit row is emitted when the joint would end the step this close to (or past) its limit:
+// [rad or m]. Small: the row is speculative (it lets the joint reach the limit exactly).
+constexpr double kLimitMargin = 1e-4;
+
+// Relative diagonal compliance of rows on a tree (see addDelassusBlocks).
+constexpr double kRegularization = 1e-9;
+
+bool coversEveryRow(const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda) {
+  return !slots.empty() && lambda.size() >= slots.back().offset + slots.back().rows;
+}
+}  // namespace
+
+struct ArticulationStage::TreeRows {
+  TreeRows(std::int32_t index, const joints::tree::Articulation& model, const Eigen::VectorXd& q)
+      : articulation(index), response(model, q) {}
+  std::int32_t articulation;
+  joints::tree::ArticulationImpulse response;
+  std::vector<int> blocks;                 // row blocks with a side on this tree
+  std::vector<Eigen::MatrixXd> jacobians;  // per block: k x nv joint-space rows (both sides)
+};
+
+void ArticulationStage::appendConstraintEdges(std::vector<ConstraintEdge>& edges, double h) {
+  constraints_.clear();
+  firstConstraintEdge_ = edges.size();
+  for (std::size_t a = 0; a < records_.size(); ++a) {
+    Record& r = records_[a];
+    if (r.model->nv() == 0) continue;
+    const auto representative = static_cast<std::int32_t>(r.linkBodies.front().index);
+    for (int i = 0; i < r.model->linkCount(); ++i) {
+      const joints::tree::TreeJoint& joint = r.model->link(i).joint;
+      if (joint.type != TreeJointType::Revolute && joint.type != TreeJointType::Prismatic) continue;
+      const double q = r.q[r.model->qIndex(i)], qd = r.qd[r.model->vIndex(i)];
+      const double predicted = q + h * qd;
+      const bool lower = std::isfinite(joint.lower) && predicted < joint.lower + kLimitMargin;
+      const bool upper = std::isfinite(joint.upper) && predicted > joint.upper - kLimitMargin;
+      if (!lower) r.lowerWarm[i] = 0.0;
+      if (!upper) r.upperWarm[i] = 0.0;
+      for (const auto& [active, kind] :
+           {std::pair{lower, ConstraintKind::Lower}, std::pair{upper, ConstraintKind::Upper}}) {
+        if (!active) continue;
+        constraints_.push_back({static_cast<std::int32_t>(a), kind, i});
+        edges.push_back({representative, ConstraintEdge::kNoBody});
+      }
+    }
+    for (std::size_t c = 0; c < r.closures.size(); ++c) {
+      const int linkB = r.closures[c].linkB;
+      constraints_.push_back(
+          {static_cast<std::int32_t>(a), ConstraintKind::Closure, static_cast<std::int32_t>(c)});
+      edges.push_back({representative, linkB >= 0 ? representative : ConstraintEdge::kNoBody});
+    }
+  }
+}
+
+Island ArticulationStage::withoutTreeConstraints(const Island& island) const {
+  Island out = island;
+  std::erase_if(out.constraints, [&](std::int32_t k) {
+    return static_cast<std::size_t>(k) >= firstConstraintEdge_;
+  });
+  return out;
+}
+
+RowBlock ArticulationStage::rowBlockOf(const TreeConstraint& c, const geometry::BodyState& state,
+                                       double h) const {
+  const Record& r = records_[c.articulation];
+  RowBlock block;
+  if (c.kind == ConstraintKind::Closure) {
+    const LoopClosureDesc& closure = r.closures[c.index];
+    const Eigen::Vector3d pA = r.linkPoses[closure.linkA].apply(closure.anchorA);
+    const Eigen::Vector3d pB =
+        closure.linkB >= 0 ? r.linkPoses[closure.linkB].apply(closure.anchorB) : closure.anchorB;
+    block.kind = RowKind::Equality;
+    block.bodyA = r.linkBodies[closure.linkA];
+    if (closure.linkB >= 0) block.bodyB = r.linkBodies[closure.linkB];
+    const Eigen::Vector3d rA = pA - state.poses[block.bodyA.index].position;
+    const Eigen::Vector3d rB = closure.linkB >= 0
+                                   ? Eigen::Vector3d(pB - state.poses[block.bodyB.index].position)
+                                   : Eigen::Vector3d::Zero();
+    const int k = static_cast<int>(std::count(closure.axes.begin(), closure.axes.end(), true));
+    block.jacobianA = RowJacobian::Zero(k, 6);
+    block.jacobianB = RowJacobian::Zero(k, 6);
+    block.bias.resize(k);
+    block.warmStart.resize(k);
+    int row = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!closure.axes[axis]) continue;
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(axis);
+      // u = e . (v_B(pB) - v_A(pA)); e . (w x r) = w . (r x e).
+      block.jacobianA.row(row) << -e.transpose(), -rA.cross(e).transpose();
+      block.jacobianB.row(row) << e.transpose(), rB.cross(e).transpose();
+      block.bias[row] = r.errorReduction * e.dot(pB - pA) / h;  // Baumgarte on the gap
+      block.warmStart[row] = r.closureWarm[c.index][axis];
+      ++row;
+    }
+    block.sourceKey = (static_cast<std::uint64_t>(c.articulation) << 32) | (1u << 31) | c.index;
+    return block;
+  }
+
+  // Limit of link i's 1-DOF joint: u = s qd_i >= 0 written as the relative twist of the child
+  // and its parent along the joint axis (exactly qd_i after the joint-space transform).
+  const int i = c.index;
+  const joints::tree::TreeJoint& joint = r.model->link(i).joint;
+  const int parent = r.model->parent(i);
+  const double s = c.kind == ConstraintKind::Lower ? 1.0 : -1.0;
+  const Eigen::Vector3d axis = r.linkPoses[i].rotation * joint.axis;  // world
+  block.kind = RowKind::Unilateral;
+  block.bodyB = r.linkBodies[i];
+  if (parent >= 0) block.bodyA = r.linkBodies[parent];
+  block.jacobianA = RowJacobian::Zero(1, 6);
+  block.jacobianB = RowJacobian::Zero(1, 6);
+  if (joint.type == TreeJointType::Revolute) {
+    block.jacobianB.row(0).tail<3>() = s * axis.transpose();
+    block.jacobianA.row(0).tail<3>() = -s * axis.transpose();
+  } else {  // prismatic: velocity of the child origin relative to the parent point there
+    const Eigen::Vector3d lever =
+        r.linkPoses[i].position -
+        (parent >= 0 ? r.linkPoses[parent].position : Eigen::Vector3d::Zero());
+    block.jacobianB.row(0).head<3>() = s * axis.transpose();
+    block.jacobianA.row(0) << -s * axis.transpose(), -s * lever.cross(axis).transpose();
+  }
+  const double q = r.q[r.model->qIndex(i)];
+  const double distance = c.kind == ConstraintKind::Lower ? q - joint.lower : joint.upper - q;
+  // Speculative while apart (reach the limit exactly), Baumgarte when past it.
+  block.bias =
+      RowVector::Constant(1, distance >= 0.0 ? distance / h : r.errorReduction * distance / h);
+  block.warmStart =
+      RowVector::Constant(1, c.kind == ConstraintKind::Lower ? r.lowerWarm[i] : r.upperWarm[i]);
+  block.sourceKey = (static_cast<std::uint64_t>(c.articulation) << 32) |
+                    (static_cast<std::uint64_t>(i) << 1) | (s > 0.0 ? 0u : 1u);
+  return block;
+}
+
+void ArticulationStage::emitRows(const Island& island, const geometry::BodyState& state, double h,
+                                 joints::RowSet& rows) const {
+  for (const std::int32_t k : island.constraints) {
+    if (static_cast<std::size_t>(k) < firstConstraintEdge_) continue;
+    rows.blocks.push_back(rowBlockOf(constraints_[k - firstConstraintEdge_], state, h));
+  }
+}
+
+void ArticulationStage::storeImpulses(const joints::RowSet& rows, std::size_t firstBlock,
+                                      const std::vector<RowBlockSlot>& slots,
+                                      const Eigen::VectorXd& lambda) {
+  for (std::size_t k = firstBlock; k < rows.blocks.size(); ++k) {
+    const std::uint64_t key = rows.blocks[k].sourceKey;
+    Record& r = records_[key >> 32];
+    const auto index = static_cast<std::size_t>(key & 0x7fffffffu);
+    const auto impulse = lambda.segment(slots[k].offset, slots[k].rows);
+    if ((key & (1u << 31)) != 0) {
+      int row = 0;
+      for (int axis = 0; axis < 3; ++axis)
+        if (r.closures[index].axes[axis]) r.closureWarm[index][axis] = impulse[row++];
+    } else if ((index & 1u) == 0) {
+      r.lowerWarm[index >> 1] = impulse[0];
+    } else {
+      r.upperWarm[index >> 1] = impulse[0];
+    }
+  }
+}
+
+std::vector<ArticulationStage::TreeRows> ArticulationStage::treeRows(
+    const joints::RowSet& rows, const geometry::BodyState& state) const {
+  std::vector<TreeRows> trees;
+  std::map<std::int32_t, std::size_t> treeOf;  // articulation slot -> index in `trees`
+  for (int k = 0; k < static_cast<int>(rows.blocks.size()); ++k) {
+    const RowBlock& block = rows.blocks[k];
+    for (const bool sideB : {false, true}) {
+      const geometry::BodyId& body = sideB ? block.bodyB : block.bodyA;
+      if (!body.valid() || !isLink(body.index)) continue;
+      const LinkRef link = linkOfBody_[body.index];
+      const Record& r = records_[link.articulation];
+      if (r.model->nv() == 0) continue;
+      auto [it, inserted] = treeOf.try_emplace(link.articulation, trees.size());
+      if (inserted) trees.emplace_back(link.articulation, *r.model, r.q);
+      TreeRows& tree = trees[it->second];
+      const Eigen::MatrixXd jointRows =
+          (sideB ? block.jacobianB : block.jacobianA) *
+          joints::tree::twistJacobian(*r.model, tree.response.kinematics(), link.link,
+                                      state.poses[body.index].position);
+      if (!tree.blocks.empty() && tree.blocks.back() == k) {
+        tree.jacobians.back() += jointRows;  // both sides on this tree (a loop closure)
+      } else {
+        tree.blocks.push_back(k);
+        tree.jacobians.push_back(jointRows);
+      }
+    }
+  }
+  return trees;
+}
+
+int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
+                                         const geometry::BodyState& state,
+                                         DelassusBlockMap& blocks) const {
+  int degreesOfFreedom = 0;
+  for (const TreeRows& tree : treeRows(rows, state)) {
+    degreesOfFreedom += records_[tree.articulation].model->nv();
+    // M^-1 J_t^T, one impulse-level ABA pass per row.
+    std::vector<Eigen::MatrixXd> minvJt;
+    minvJt.reserve(tree.jacobians.size());
+    for (const Eigen::MatrixXd& J : tree.jacobians) {
+      Eigen::MatrixXd columns(J.cols(), J.rows());
+      for (Eigen::Index row = 0; row < J.rows(); ++row)
+        columns.col(row) = tree.response.applyInverseMass(J.row(row).transpose());
+      minvJt.push_back(std::move(columns));
+    }
+    // A tree with few joints cannot move along some row directions (a 1-DOF arm on a table has
+    // no velocity along the hinge axis): those rows have W_rr = 0 and many rows on one tree make
+    // W rank-deficient. A relative compliance kRegularization on the diagonal keeps W positive
+    // definite; it changes a row's velocity by kRegularization * maxDiagonal * lambda, well below
+    // any solver tolerance.
+    double maxDiagonal = 0.0;
+    for (std::size_t i = 0; i < tree.blocks.size(); ++i)
+      for (Eigen::Index row = 0; row < tree.jacobians[i].rows(); ++row)
+        maxDiagonal = std::max(maxDiagonal, tree.jacobians[i].row(row).dot(minvJt[i].col(row)));
+    const double compliance = kRegularization * std::max(maxDiagonal, 1e-12);
+    for (std::size_t i = 0; i < tree.blocks.size(); ++i)
+      for (std::size_t j = 0; j < tree.blocks.size(); ++j) {
+        Eigen::MatrixXd contribution = tree.jacobians[i] * minvJt[j];
+        if (i == j) contribution.diagonal().array() += compliance;
+        auto [it, inserted] =
+            blocks.try_emplace({tree.blocks[i], tree.blocks[j]}, std::move(contribution));
+        if (!inserted) it->second += tree.jacobians[i] * minvJt[j];
+      }
+  }
+  return degreesOfFreedom;
+}
+
+std::vector<Eigen::VectorXd> ArticulationStage::jointImpulses(
+    const std::vector<TreeRows>& trees, const std::vector<RowBlockSlot>& slots,
+    const Eigen::VectorXd& lambda) const {
+  std::vector<Eigen::VectorXd> out;
+  for (const TreeRows& tree : trees) {
+    Eigen::VectorXd tau = Eigen::VectorXd::Zero(records_[tree.articulation].model->nv());
+    for (std::size_t i = 0; i < tree.blocks.size(); ++i) {
+      const RowBlockSlot& slot = slots[tree.blocks[i]];
+      tau += tree.jacobians[i].transpose() * lambda.segment(slot.offset, slot.rows);
+    }
+    out.push_back(tree.response.applyInverseMass(tau));  // M^-1 J_t^T lambda
+  }
+  return out;
+}
+
+void ArticulationStage::applyImpulses(const joints::RowSet& rows,
+                                      const std::vector<RowBlockSlot>& slots,
+                                      const Eigen::VectorXd& lambda, geometry::BodyState& state) {
+  if (!coversEveryRow(slots, lambda)) return;  // a solve that returned no impulses
+  const std::vector<TreeRows> trees = treeRows(rows, state);
+  const std::vector<Eigen::VectorXd> change = jointImpulses(trees, slots, lambda);
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    Record& r = records_[trees[t].articulation];
+    r.qd += change[t];
+    updateProxies(r, state);
+  }
+}
+
+void ArticulationStage::applyPseudoImpulses(const joints::RowSet& rows,
+                                            const std::vector<RowBlockSlot>& slots,
+                                            const Eigen::VectorXd& lambda, double h,
+                                            geometry::BodyState& state) {
+  if (!coversEveryRow(slots, lambda)) return;  // a solve that returned no impulses
+  const std::vector<TreeRows> trees = treeRows(rows, state);
+  const std::vector<Eigen::VectorXd> change = jointImpulses(trees, slots, lambda);
+  for (std::size_t t = 0; t < trees.size(); ++t) {
+    Record& r = records_[trees[t].articulation];
+    integrators::integrateConfiguration(*r.model, r.q, change[t], h);
+    updateProxies(r, state);
+  }
+}
+
+}  // namespace coulomb::engine

@@ -1,0 +1,156 @@
+#pragma once
+// The articulations of a World and their part of the step (docs/architecture.md, "Articulations
+// in the step"). Design: every link has a *proxy* body slot in geometry::BodyState, a Kinematic
+// body whose pose is the link frame (from forward kinematics) and whose velocity is the link's
+// (velocity of the link origin, angular velocity; world). So:
+//  - collision sees link poses by BodyId.index like any body's, with the link's colliders;
+//  - contact rows (and any other RowBlock) name a link by its proxy BodyId, in the usual body
+//    twist coordinates; q = J v* comes for free from the proxy velocities (set from v*);
+//  - proxies carry no unknowns as bodies (kinematic: inverse mass 0); the tree's unknowns are its
+//    joint velocities. ProblemAssembler asks this stage for the tree part of W: each row side on a
+//    link becomes a joint-space row J_row * twistJacobian(link, proxy origin) (1 x nv) and
+//    W += J_t M^-1 J_t^T by impulse-level ABA (one O(n) pass per row, no M formed);
+//  - the impulses update qd by M^-1 J_t^T lambda (one O(n) pass per tree);
+//  - islands: a tree is one unit: every link maps to its root link's proxy (the representative),
+//    so a link touching a body joins the tree and the body in one island and one problem.
+// Joint limits (lower/upper of revolute and prismatic tree joints) and loop closures are row
+// blocks on the proxies as well (relative twist of parent and child along the joint axis; point
+// coincidence), with island edges appended after every other edge of the step.
+#include <coulomb/engine/ArticulationDesc.hpp>
+#include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/engine/WorldSettings.hpp>
+#include <coulomb/geometry/BodyState.hpp>
+#include <coulomb/geometry/Ids.hpp>
+#include <coulomb/joints/RowSet.hpp>
+#include <coulomb/joints/tree/Articulation.hpp>
+
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace coulomb::engine {
+
+struct RowBlockSlot;
+
+/// W blocks keyed by (row block, row block), as ProblemAssembler accumulates them.
+using DelassusBlockMap = std::map<std::pair<int, int>, Eigen::MatrixXd>;
+
+/// Which articulation (slot) and link a proxy body stands for; articulation -1: not a link.
+struct LinkRef {
+  std::int32_t articulation = -1;
+  std::int32_t link = -1;
+  [[nodiscard]] bool valid() const { return articulation >= 0; }
+};
+
+class ArticulationStage {
+ public:
+  /// A validated description: the model and the proxy bodies to create (World::createBody).
+  struct Prepared {
+    std::unique_ptr<joints::tree::Articulation> model;
+    std::vector<joints::tree::TreeLink> links;
+    Eigen::VectorXd q, qd;
+    std::vector<BodyDesc> proxies;  // one per link, Kinematic, at the link pose of q
+    ArticulationDesc desc;          // closures, flags
+  };
+  /// Throws CoulombError naming the articulation, link or value; changes nothing.
+  [[nodiscard]] Prepared prepare(const ArticulationDesc& desc, const WorldSettings& settings) const;
+  /// Registers a prepared articulation whose proxies the World has just created.
+  geometry::ArticulationId add(Prepared prepared, std::vector<geometry::BodyId> proxies,
+                               geometry::BodyState& state);
+
+  [[nodiscard]] bool contains(geometry::ArticulationId id) const;
+  [[nodiscard]] std::size_t count() const;
+  [[nodiscard]] const joints::tree::Articulation& model(geometry::ArticulationId id) const;
+  [[nodiscard]] const Eigen::VectorXd& q(geometry::ArticulationId id) const;
+  [[nodiscard]] const Eigen::VectorXd& qd(geometry::ArticulationId id) const;
+  [[nodiscard]] geometry::BodyId linkBody(geometry::ArticulationId id, int link) const;
+  [[nodiscard]] const geometry::Pose& linkPose(geometry::ArticulationId id, int link) const;
+  /// Sets q and qd (checked: sizes, finiteness, quaternions) and moves the proxies.
+  void setState(geometry::ArticulationId id, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                geometry::BodyState& state);
+  /// Accumulates generalised joint forces (nv values) for the next step; cleared every step.
+  void applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd& tau);
+
+  [[nodiscard]] bool isLink(std::size_t bodyIndex) const {
+    return bodyIndex < linkOfBody_.size() && linkOfBody_[bodyIndex].valid();
+  }
+  [[nodiscard]] LinkRef linkOf(std::size_t bodyIndex) const {
+    return isLink(bodyIndex) ? linkOfBody_[bodyIndex] : LinkRef{};
+  }
+
+  // ---- the step, in order --------------------------------------------------------------------
+  /// v* = qd + h ABA(q, qd, tau) with the world's gravity; proxies get the links' velocities.
+  void predictVelocities(const Eigen::Vector3d& gravity, double h, geometry::BodyState& state);
+  /// Collision filter: false for two links of one tree unless self-collision is on (then false
+  /// only for a parent and its child). True for any pair not made of two links.
+  [[nodiscard]] bool keepPair(std::size_t bodyA, std::size_t bodyB) const;
+  /// Island mask: a tree with unknowns counts as one dynamic body, its root link's proxy.
+  void markIslandBodies(std::vector<std::uint8_t>& mask) const;
+  /// Every link index in `edges` becomes its tree's representative (the root link's proxy).
+  void mapEdges(std::vector<ConstraintEdge>& edges) const;
+  /// Appends one edge per active joint limit and loop closure (after every other edge).
+  void appendConstraintEdges(std::vector<ConstraintEdge>& edges, double h);
+  /// The island without the edges appended by appendConstraintEdges.
+  [[nodiscard]] Island withoutTreeConstraints(const Island& island) const;
+  /// Appends the island's limit and closure row blocks (warm-started) to `rows`.
+  void emitRows(const Island& island, const geometry::BodyState& state, double h,
+                joints::RowSet& rows) const;
+  /// For ProblemAssembler: adds J_t M^-1 J_t^T of every tree touched by `rows` to `blocks`;
+  /// returns the number of joint velocities involved (degrees of freedom).
+  int addDelassusBlocks(const joints::RowSet& rows, const geometry::BodyState& state,
+                        DelassusBlockMap& blocks) const;
+  /// qd += M^-1 J_t^T lambda for every tree touched by `rows`; refreshes the proxy velocities.
+  void applyImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
+                     const Eigen::VectorXd& lambda, geometry::BodyState& state);
+  /// Keeps the impulses of the blocks from `firstBlock` on (emitRows' blocks) as warm starts.
+  void storeImpulses(const joints::RowSet& rows, std::size_t firstBlock,
+                     const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda);
+  /// q <- q (+) h qd on the joint manifolds; proxies follow forward kinematics.
+  void integratePositions(double h, geometry::BodyState& state);
+  /// Split impulse: q <- q (+) h M^-1 J_t^T p (pseudo-velocities, then discarded).
+  void applyPseudoImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
+                           const Eigen::VectorXd& lambda, double h, geometry::BodyState& state);
+  void clearForces();
+
+ private:
+  struct Record {
+    std::string name;
+    std::vector<joints::tree::TreeLink> links;
+    std::unique_ptr<joints::tree::Articulation> model;
+    Eigen::VectorXd q, qd, tau;
+    std::vector<geometry::BodyId> linkBodies;
+    std::vector<geometry::Pose> linkPoses;
+    std::vector<LoopClosureDesc> closures;
+    std::vector<Eigen::Vector3d> closureWarm;
+    std::vector<double> lowerWarm, upperWarm;  // per link
+    double errorReduction = 0.2;
+    bool selfCollision = false;
+    std::uint32_t generation = 0;
+  };
+  enum class ConstraintKind : std::uint8_t { Lower, Upper, Closure };
+  struct TreeConstraint {
+    std::int32_t articulation = 0;
+    ConstraintKind kind = ConstraintKind::Lower;
+    std::int32_t index = 0;  // link (limits) or closure
+  };
+  struct TreeRows;  // per tree: the joint-space Jacobians of the row blocks on it
+
+  Record& record(geometry::ArticulationId id);
+  [[nodiscard]] const Record& record(geometry::ArticulationId id) const;
+  void updateProxies(Record& r, geometry::BodyState& state) const;
+  [[nodiscard]] std::vector<TreeRows> treeRows(const joints::RowSet& rows,
+                                               const geometry::BodyState& state) const;
+  [[nodiscard]] joints::RowBlock rowBlockOf(const TreeConstraint& c,
+                                            const geometry::BodyState& state, double h) const;
+  [[nodiscard]] std::vector<Eigen::VectorXd> jointImpulses(const std::vector<TreeRows>& trees,
+                                                           const std::vector<RowBlockSlot>& slots,
+                                                           const Eigen::VectorXd& lambda) const;
+
+  std::vector<Record> records_;
+  std::vector<LinkRef> linkOfBody_;  // per body slot
+  std::vector<TreeConstraint> constraints_;
+  std::size_t firstConstraintEdge_ = 0;
+};
+
+}  // namespace coulomb::engine
