@@ -16,23 +16,42 @@ namespace coulomb::engine {
 
 using geometry::BodyId;
 
+namespace {
+// True for what SolverChooser accepts: "auto", a registry name, "name!" (that solver alone) or a
+// chain "a,b,c" of registry names.
+bool isKnownSolverRequest(const solvers::SolverRegistry& registry, const std::string& request) {
+  if (request == "auto") return true;
+  std::string name;
+  for (std::size_t i = 0; i <= request.size(); ++i) {
+    if (i < request.size() && request[i] != ',') {
+      name += request[i];
+      continue;
+    }
+    if (!name.empty() && name.back() == '!') name.pop_back();
+    if (!registry.find(name)) return false;
+    name.clear();
+  }
+  return true;
+}
+}  // namespace
+
 World::World(WorldSettings settings)
     : settings_(std::move(settings)), collision_(settings_.collision) {
   if (auto problem = settings_.validate()) throw CoulombError("world settings: " + *problem);
-  if (settings_.solver != "auto" && !registry_.find(settings_.solver))
+  if (!isKnownSolverRequest(registry_, settings_.solver))
     throw CoulombError("world settings: unknown solver '" + settings_.solver +
                        "' (see `coulomb solvers`)");
 }
 
 void World::setSolver(const std::string& solver) {
-  if (solver != "auto" && !registry_.find(solver))
+  if (!isKnownSolverRequest(registry_, solver))
     throw CoulombError("setSolver: unknown solver '" + solver + "' (see `coulomb solvers`)");
   settings_.solver = solver;
 }
 
 void World::setSolverOverride(BodyId id, const std::string& solver) {
   const std::size_t i = slotOf(id);
-  if (!solver.empty() && solver != "auto" && !registry_.find(solver))
+  if (!solver.empty() && !isKnownSolverRequest(registry_, solver))
     throw CoulombError("setSolverOverride: unknown solver '" + solver + "' for body '" + names_[i] +
                        "' (see `coulomb solvers`)");
   solverOverrides_[i] = solver;
@@ -40,7 +59,7 @@ void World::setSolverOverride(BodyId id, const std::string& solver) {
 
 BodyId World::createBody(const BodyDesc& desc) {
   ResolvedBody body = resolveBody(desc, settings_);  // throws before anything is changed
-  if (!desc.solver.empty() && desc.solver != "auto" && !registry_.find(desc.solver))
+  if (!desc.solver.empty() && !isKnownSolverRequest(registry_, desc.solver))
     throw CoulombError("body '" + desc.name + "': unknown solver '" + desc.solver +
                        "' (see `coulomb solvers`)");
   std::size_t slot = state_.size();
@@ -207,6 +226,7 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
   auto& manifolds = collision_.cache().manifolds();
   rows = emitContactRows(island, manifolds, state_, settings_.contact, h, sources);
   AssembledProblem assembled = assembler_.assemble(rows, state_);  // W = J M^-1 J^T, q = J v*
+  if (problemObserver_) problemObserver_(island.id, assembled.problem);
   const std::string& override = solverOverrides_[island.bodies.front()];
   const solvers::SolvePlan plan = solvers::SolverChooser().choose(
       assembled.problem, {assembled.degreesOfFreedom},

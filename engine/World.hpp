@@ -13,6 +13,7 @@
 #include <coulomb/solvers/SolverRegistry.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,13 @@ class World {
   /// bodies with different overrides, the one of its smallest body index wins.
   void setSolverOverride(geometry::BodyId id, const std::string& solver);
   void setSolver(const std::string& solver);  // WorldSettings::solver, validated
+  /// Called for every island of every step with its assembled problem, before it is solved (the
+  /// island id is that of the step's IslandReport; stepCount() is the index of the step being
+  /// taken). For capturing problems, e.g. `coulomb run --capture`. Empty (the default) = none.
+  /// Not part of the state: a copy or snapshot does not carry it.
+  using ProblemObserver =
+      std::function<void(std::int32_t island, const solvers::ContactProblem& problem)>;
+  void setProblemObserver(ProblemObserver observer) { problemObserver_ = std::move(observer); }
 
  private:
   /// The per-island stages of step(): rows, assembly, solver plan, solve, impulses, warm starts.
@@ -97,6 +105,7 @@ class World {
   IslandBuilder islandBuilder_;
   ProblemAssembler assembler_;
   solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
+  ProblemObserver problemObserver_;
   double time_ = 0.0;
   std::uint64_t stepCount_ = 0;
 };

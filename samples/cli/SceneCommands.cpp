@@ -1,8 +1,6 @@
 // `coulomb run`, `coulomb scenes` and `coulomb demo` (docs/architecture.md section 0).
-#include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
 
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -13,6 +11,9 @@
 
 #include "Commands.hpp"
 #include "FreeFlightSamples.hpp"
+#include "ProblemCapture.hpp"
+#include "RunOutputs.hpp"
+#include "SceneRun.hpp"
 #include "scenes/SceneRegistry.hpp"
 
 namespace coulomb::cli {
@@ -20,18 +21,13 @@ namespace {
 
 struct RunOptions {
   std::string scene;
-  std::optional<double> timeStep;
-  std::optional<std::uint64_t> steps;
+  SceneOverrides overrides;
   std::string trajectoryPath;
   std::string statsPath;
+  std::string contactsPath;
+  std::string captureDirectory;
+  std::optional<std::uint64_t> captureStep;
 };
-
-std::ofstream openOutput(const std::string& path, const char* what) {
-  std::ofstream out(path);
-  if (!out) throw CommandError("cannot write the " + std::string(what) + " file '" + path + "'");
-  out << std::setprecision(17);
-  return out;
-}
 
 void writeTrajectoryRows(std::ostream& out, const engine::World& world) {
   const geometry::BodyState& s = world.state();
@@ -64,16 +60,6 @@ Totals totals(const geometry::BodyState& s) {
   return t;
 }
 
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    out += c;
-  }
-  return out + "\"";
-}
-
 std::string jsonVector(const Eigen::Vector3d& v) {
   std::ostringstream out;
   out << std::setprecision(17) << '[' << v.x() << ", " << v.y() << ", " << v.z() << ']';
@@ -81,68 +67,69 @@ std::string jsonVector(const Eigen::Vector3d& v) {
 }
 
 void run(const RunOptions& options) {
-  engine::io::Scene scene;
-  try {
-    scene = scenes::resolveScene(options.scene);
-  } catch (const engine::CoulombError& e) {
-    throw CommandError(e.what());
-  }
-  if (options.timeStep) {
-    if (!std::isfinite(*options.timeStep) || *options.timeStep <= 0.0)
-      throw CommandError("--dt must be finite and > 0 s");
-    scene.settings.timeStep = *options.timeStep;
-  }
-  if (options.steps) scene.steps = *options.steps;
-  engine::World world = [&] {
-    try {
-      return engine::io::buildWorld(scene);
-    } catch (const engine::CoulombError& e) {
-      throw CommandError(e.what());
-    }
-  }();
+  const engine::io::Scene scene = loadScene(options.scene, options.overrides);
+  engine::World world = buildWorldFor(scene);
 
   std::optional<std::ofstream> trajectory;
   if (!options.trajectoryPath.empty()) {
-    trajectory = openOutput(options.trajectoryPath, "trajectory");
+    trajectory = openOutputFile(options.trajectoryPath, "trajectory");
     *trajectory << "time,body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
     writeTrajectoryRows(*trajectory, world);
   }
-  const Totals initial = totals(world.state());
-  double stepSeconds = 0.0;
-  for (std::uint64_t n = 0; n < scene.steps; ++n) {
-    const auto start = std::chrono::steady_clock::now();
-    world.step(scene.settings.timeStep);
-    stepSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (trajectory) writeTrajectoryRows(*trajectory, world);
+  std::optional<ContactsCsv> contacts;
+  if (!options.contactsPath.empty()) contacts.emplace(options.contactsPath);
+  std::optional<StatsJson> stats;
+  if (!options.statsPath.empty()) stats.emplace(options.statsPath);
+  std::optional<ProblemCapture> capture;
+  if (!options.captureDirectory.empty()) {
+    capture.emplace(options.captureDirectory, scene.name, options.captureStep);
+    capture->attach(world);
   }
+
+  const Totals initial = totals(world.state());
+  RunMetrics metrics(world);
+  runSteps(world, scene.steps, scene.settings.timeStep, metrics,
+           [&](const engine::StepReport& report) {
+             if (trajectory) writeTrajectoryRows(*trajectory, world);
+             if (contacts) contacts->write(world, report);
+             if (stats) stats->writeStep(report, report.seconds);
+           });
+  if (capture) capture->throwIfFailed();
   const Totals final = totals(world.state());
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(world.stateHash()));
-  const double perStep = scene.steps > 0 ? stepSeconds / static_cast<double>(scene.steps) : 0.0;
+  const double meanStepSeconds = 1e-3 * metrics.meanStepMilliseconds();
+  const double stepSeconds = meanStepSeconds * static_cast<double>(metrics.steps());
 
   std::cout << "scene " << scene.name << " (" << scene.source << "): " << world.bodyCount()
-            << (world.bodyCount() == 1 ? " body, " : " bodies, ") << scene.steps << " steps of "
-            << scene.settings.timeStep << " s\n"
-            << "  simulated " << world.time() << " s in " << stepSeconds << " s (" << perStep * 1e6
-            << " us/step)\n"
+            << (world.bodyCount() == 1 ? " body, " : " bodies, ") << metrics.steps() << " steps of "
+            << scene.settings.timeStep << " s, solver " << scene.settings.solver << "\n"
+            << "  simulated " << world.time() << " s in " << stepSeconds << " s ("
+            << meanStepSeconds * 1e6 << " us/step mean, " << metrics.medianStepMilliseconds() * 1e3
+            << " us/step median)\n"
             << "  kinetic energy " << initial.kineticEnergy << " -> " << final.kineticEnergy
             << " J\n"
             << "  state hash " << hash << "\n";
-  if (!options.statsPath.empty()) {
-    std::ofstream stats = openOutput(options.statsPath, "stats");
-    stats << "{\n  \"scene\": " << jsonString(scene.name)
-          << ",\n  \"source\": " << jsonString(scene.source)
-          << ",\n  \"bodies\": " << world.bodyCount() << ",\n  \"steps\": " << scene.steps
-          << ",\n  \"time_step\": " << scene.settings.timeStep
-          << ",\n  \"simulated_time\": " << world.time()
-          << ",\n  \"step_seconds_total\": " << stepSeconds
-          << ",\n  \"step_seconds_mean\": " << perStep
+  if (metrics.diverged())
+    std::cout << "  DIVERGED at t=" << world.time() << " s (non-finite, or beyond 1000 m or m/s)\n";
+  if (metrics.collisionFailures() > 0)
+    std::cout << "  collision: " << metrics.collisionFailures() << " pair failures skipped\n";
+  if (stats) {
+    printSolverSummary(std::cout, metrics);
+    std::ostringstream extra;
+    extra << std::setprecision(17) << "  \"step_seconds_total\": " << stepSeconds
+          << ",\n  \"step_seconds_mean\": " << meanStepSeconds
           << ",\n  \"kinetic_energy\": {\"initial\": " << initial.kineticEnergy
           << ", \"final\": " << final.kineticEnergy << "}"
           << ",\n  \"angular_momentum\": {\"initial\": " << jsonVector(initial.angularMomentum)
           << ", \"final\": " << jsonVector(final.angularMomentum) << "}"
-          << ",\n  \"state_hash\": \"" << hash << "\"\n}\n";
+          << ",\n  \"state_hash\": \"" << hash << "\"";
+    stats->finish(scene, world, metrics, extra.str());
   }
+  if (capture)
+    std::cout << "  captured " << capture->filesWritten() << " island problems in "
+              << options.captureDirectory << " (" << capture->islandsSkipped()
+              << " skipped: rows without an fc3d form)\n";
 }
 
 void listScenes() {
@@ -159,11 +146,27 @@ void registerSceneCommands(CLI::App& app) {
   CLI::App* runCommand = app.add_subcommand("run", "Run a scene (built-in name or JSON file)");
   runCommand->add_option("scene", options->scene, "Built-in scene name or path to a .json scene")
       ->required();
-  runCommand->add_option("--dt", options->timeStep, "Time step [s] (default: the scene's)");
-  runCommand->add_option("--steps", options->steps, "Number of steps (default: the scene's)");
+  runCommand->add_option("--solver", options->overrides.solver,
+                         "Contact solver of every island: auto, a name of `coulomb solvers`, "
+                         "NAME! (no fallback) or a chain a,b,c (default: the scene's)");
+  runCommand->add_option("--dt", options->overrides.timeStep,
+                         "Time step [s] (default: the scene's)");
+  runCommand->add_option("--steps", options->overrides.steps,
+                         "Number of steps (default: the scene's)");
   runCommand->add_option("--out", options->trajectoryPath,
                          "Write every moving body's state at every step as CSV");
-  runCommand->add_option("--stats", options->statsPath, "Write a JSON summary of the run");
+  runCommand->add_option("--stats", options->statsPath,
+                         "Write per-step, per-island solver data and the run's summary as JSON, "
+                         "and print a per-solver summary");
+  runCommand->add_option("--contacts", options->contactsPath,
+                         "Write every contact point of every step as CSV");
+  runCommand->add_option("--capture", options->captureDirectory,
+                         "Write each island's contact problem as .fc3d into this folder "
+                         "(replay with `coulomb solve`)");
+  runCommand
+      ->add_option("--capture-step", options->captureStep,
+                   "Capture only this step (0 = the first; default: every step)")
+      ->needs("--capture");
   runCommand->callback([options] { run(*options); });
 
   app.add_subcommand("scenes", "List the built-in scenes")->callback(listScenes);

@@ -8,6 +8,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   coulomb::cli::registerSceneCommands(app);
   coulomb::cli::registerSolverCommands(app);
+  coulomb::cli::registerCompareCommand(app);
+  coulomb::cli::registerBenchCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

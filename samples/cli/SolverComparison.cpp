@@ -1,0 +1,73 @@
+#include "SolverComparison.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+namespace coulomb::cli {
+
+ComparisonRow runForComparison(const engine::io::Scene& scene, double timeCapSeconds) {
+  engine::World world = buildWorldFor(scene);
+  RunMetrics metrics(world);
+  runSteps(world, scene.steps, scene.settings.timeStep, metrics, {}, timeCapSeconds);
+  const SolverTally all = metrics.allSolvers();
+  ComparisonRow row;
+  row.scene = scene.name;
+  row.solver = scene.settings.solver;
+  for (const auto& [name, tally] : metrics.solvers())
+    row.used += (row.used.empty() ? "" : "+") + (name.empty() ? std::string("none") : name);
+  row.maxIterations = scene.settings.solverOptions.maxIterations;
+  row.steps = metrics.steps();
+  row.msPerStep = metrics.medianStepMilliseconds();
+  row.iterationsMean = all.meanIterations();
+  row.iterationsMax = all.iterationsMax;
+  row.residualMean = all.meanResidual();
+  row.residualMax = all.residualMax;
+  row.maxPenetration = metrics.maxPenetration();
+  row.maxDrift = metrics.maxDrift();
+  row.energyChange = metrics.finalEnergy() - metrics.initialEnergy();
+  row.fallbacks = all.fallbacks;
+  row.unconverged = all.unconverged;
+  std::ostringstream note;
+  if (metrics.diverged()) note << "DIVERGED at t=" << world.time() << " s";
+  if (metrics.capped())
+    note << "capped: simulated " << world.time() << " of "
+         << static_cast<double>(scene.steps) * scene.settings.timeStep << " s";
+  row.note = note.str();
+  return row;
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ','))
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
+void printComparisonHeader(std::ostream& out) {
+  char line[512];
+  std::snprintf(line, sizeof line, "%-12s %10s %9s %6s %9s %9s %9s %9s %10s %9s %9s  %s\n",
+                "solver", "ms/step", "iter_mean", "max", "res_mean", "res_max", "max_pen_m",
+                "drift_m", "dE_J", "fallbacks", "unconv", "used / note");
+  out << line << std::flush;
+}
+
+void printComparisonRow(std::ostream& out, const ComparisonRow& r) {
+  char line[512];
+  const std::string tail = r.used + (r.note.empty() ? "" : "; " + r.note);
+  std::snprintf(line, sizeof line,
+                "%-12s %10.4f %9.2f %6d %9.2e %9.2e %9.2e %9.2e %10.3e %9llu %9llu  %s\n",
+                r.solver.c_str(), r.msPerStep, r.iterationsMean, r.iterationsMax, r.residualMean,
+                r.residualMax, r.maxPenetration, r.maxDrift, r.energyChange,
+                static_cast<unsigned long long>(r.fallbacks),
+                static_cast<unsigned long long>(r.unconverged), tail.c_str());
+  out << line << std::flush;
+}
+
+void printComparisonTable(std::ostream& out, const std::vector<ComparisonRow>& rows) {
+  printComparisonHeader(out);
+  for (const ComparisonRow& r : rows) printComparisonRow(out, r);
+}
+
+}  // namespace coulomb::cli

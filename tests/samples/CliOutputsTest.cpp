@@ -1,0 +1,206 @@
+// The `coulomb` CLI end to end: `run` with --solver/--stats/--contacts/--capture writes files with
+// the documented columns and sane numbers, `compare` prints one row per solver, captured problems
+// replay with `coulomb solve`, and bad solver names or files give a message naming them and a
+// non-zero exit status. The scenes are written by the test (a 1 kg box resting on a plane).
+#include <coulomb/solvers/io/Fc3dText.hpp>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+CommandResult runCoulomb(const std::string& arguments) {
+  const std::string command =
+      std::string(COULOMB_BINARY_DIR) + "/bin/coulomb " + arguments + " 2>&1";
+  CommandResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr)
+    result.output += buffer.data();
+  const int raw = pclose(pipe);
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return result;
+}
+
+std::string boxOnPlaneScene(double friction) {
+  std::ostringstream s;
+  s << R"({"name": "cli_box", "time_step": 0.01, "steps": 100,
+  "materials": {"m": {"friction": )"
+    << friction << R"(, "restitution": 0.0}},
+  "bodies": [
+    {"name": "ground", "type": "static", "shapes": [{"type": "plane", "material": "m"}]},
+    {"name": "box", "position": [0.0, 0.0, 0.1], "mass": 1.0,
+     "inertia": [0.0066666666666666671, 0.0066666666666666671, 0.0066666666666666671],
+     "shapes": [{"type": "box", "half_extents": [0.1, 0.1, 0.1], "material": "m"}]}]})";
+  return s.str();
+}
+
+class CliOutputs : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(COULOMB_BINARY_DIR) / "tests" / "cli_outputs" / info->name();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  std::string writeScene(double friction) {
+    const fs::path path = dir_ / "box.json";
+    std::ofstream(path) << boxOnPlaneScene(friction);
+    return path.string();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  return fields;
+}
+
+TEST_F(CliOutputs, RunWritesContactsAndStatsWithExpectedColumnsAndSaneNumbers) {
+  const std::string scene = writeScene(0.5);
+  const CommandResult r = runCoulomb("run " + scene + " --solver pgs --steps 100 --stats " +
+                                     path("stats.json") + " --contacts " + path("contacts.csv"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("solver pgs"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("iter_mean"), std::string::npos) << r.output;  // per-solver summary
+
+  std::ifstream contacts(path("contacts.csv"));
+  std::string line;
+  ASSERT_TRUE(std::getline(contacts, line));
+  EXPECT_EQ(line,
+            "step,time,body_a,name_a,body_b,name_b,x,y,z,nx,ny,nz,depth,normal_impulse,"
+            "tangent_impulse_1,tangent_impulse_2");
+  std::vector<double> impulsePerStep(100, 0.0);
+  int rows = 0;
+  while (std::getline(contacts, line)) {
+    const std::vector<std::string> f = splitCsv(line);
+    ASSERT_EQ(f.size(), 16u) << line;
+    ++rows;
+    const int step = std::stoi(f[0]);
+    ASSERT_GE(step, 0);
+    ASSERT_LT(step, 100);
+    EXPECT_TRUE((f[3] == "ground" && f[5] == "box") || (f[3] == "box" && f[5] == "ground")) << line;
+    const double nz = std::stod(f[11]);
+    EXPECT_NEAR(std::abs(nz), 1.0, 1e-9) << line;
+    EXPECT_NEAR(std::stod(f[8]), 0.0, 1e-3) << line;  // on the ground plane
+    EXPECT_LT(std::abs(std::stod(f[12])), 1e-2) << line;
+    impulsePerStep[static_cast<std::size_t>(step)] += std::stod(f[13]);
+  }
+  EXPECT_EQ(rows, 4 * 100);  // 4 corners every step
+  // The resting box's weight, m g h = 1 * 9.81 * 0.01 N s, carried at the last step.
+  EXPECT_NEAR(impulsePerStep.back(), 0.0981, 0.0981 * 0.01);
+
+  std::ifstream statsFile(path("stats.json"));
+  const nlohmann::json stats = nlohmann::json::parse(statsFile);
+  ASSERT_EQ(stats.at("per_step").size(), 100u);
+  for (const auto& step : stats.at("per_step")) {
+    ASSERT_EQ(step.at("islands").size(), 1u);
+    const auto& island = step.at("islands")[0];
+    EXPECT_EQ(island.at("contacts"), 4);
+    EXPECT_FALSE(island.at("solver").get<std::string>().empty());
+    EXPECT_TRUE(island.at("residual").is_number());
+  }
+  ASSERT_TRUE(stats.at("solvers").contains("pgs")) << stats.at("solvers").dump();
+  const auto& pgs = stats.at("solvers").at("pgs");
+  EXPECT_GT(pgs.at("islands").get<int>(), 0);
+  EXPECT_LE(pgs.at("residual_max").get<double>(), 1e-6);
+  EXPECT_GE(pgs.at("iterations_max").get<int>(), 1);
+  EXPECT_GT(stats.at("ms_per_step_median").get<double>(), 0.0);
+  EXPECT_LT(stats.at("max_drift").get<double>(), 1e-6);
+  EXPECT_EQ(stats.at("steps"), 100);
+  EXPECT_EQ(stats.at("solver"), "pgs");
+}
+
+TEST_F(CliOutputs, ComparePrintsOneRowPerSolver) {
+  const std::string scene = writeScene(0.5);
+  const CommandResult r =
+      runCoulomb("compare " + scene + " --solvers pgs,bgs,ac_newton --steps 20");
+  ASSERT_EQ(r.status, 0) << r.output;
+  int pgs = 0, bgs = 0, newton = 0;
+  std::istringstream lines(r.output);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("pgs ", 0) == 0) ++pgs;
+    if (line.rfind("bgs ", 0) == 0) ++bgs;
+    if (line.rfind("ac_newton ", 0) == 0) ++newton;
+  }
+  EXPECT_EQ(pgs, 1) << r.output;
+  EXPECT_EQ(bgs, 1) << r.output;
+  EXPECT_EQ(newton, 1) << r.output;
+  EXPECT_NE(r.output.find("ms/step"), std::string::npos) << r.output;
+}
+
+TEST_F(CliOutputs, BadSolverNameIsNamedWithNonZeroExit) {
+  const std::string scene = writeScene(0.5);
+  const CommandResult run = runCoulomb("run " + scene + " --solver no_such_solver --steps 2");
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("no_such_solver"), std::string::npos) << run.output;
+  const CommandResult compare =
+      runCoulomb("compare " + scene + " --solvers pgs,no_such_solver --steps 2");
+  EXPECT_NE(compare.status, 0);
+  EXPECT_NE(compare.output.find("no_such_solver"), std::string::npos) << compare.output;
+}
+
+TEST_F(CliOutputs, BadFilesAreNamedWithNonZeroExit) {
+  const CommandResult missing = runCoulomb("run " + path("missing.json") + " --steps 2");
+  EXPECT_NE(missing.status, 0);
+  EXPECT_NE(missing.output.find("missing.json"), std::string::npos) << missing.output;
+  std::ofstream(path("broken.json")) << "{\"bodies\": [";
+  const CommandResult broken = runCoulomb("compare " + path("broken.json") + " --steps 2");
+  EXPECT_NE(broken.status, 0);
+  EXPECT_NE(broken.output.find("broken.json"), std::string::npos) << broken.output;
+  const std::string scene = writeScene(0.5);
+  const CommandResult unwritable =
+      runCoulomb("run " + scene + " --steps 2 --contacts " + path("no/such/dir/c.csv"));
+  EXPECT_NE(unwritable.status, 0);
+  EXPECT_NE(unwritable.output.find("c.csv"), std::string::npos) << unwritable.output;
+}
+
+void expectCaptureReplays(const std::string& scene, const fs::path& dir, double mu) {
+  const fs::path captureDir = dir / "capture";
+  const CommandResult r = runCoulomb("run " + scene + " --steps 5 --capture " +
+                                     captureDir.string() + " --capture-step 3");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const fs::path file = captureDir / "cli_box_step3_island0.fc3d";
+  ASSERT_TRUE(fs::exists(file)) << r.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(captureDir), fs::directory_iterator{}), 1);
+  const coulomb::solvers::Fc3dReadResult read = coulomb::solvers::readFc3dText(file.string());
+  ASSERT_TRUE(read.problem) << read.error;
+  EXPECT_EQ(read.problem->contactCount(), 4);
+  for (const auto& block : read.problem->blocks) EXPECT_EQ(block.mu, mu);
+  const CommandResult solve = runCoulomb("solve " + file.string() + " --solver bgs");
+  ASSERT_EQ(solve.status, 0) << solve.output;
+  EXPECT_NE(solve.output.find("\"status\":\"converged\""), std::string::npos) << solve.output;
+}
+
+TEST_F(CliOutputs, CaptureWritesFc3dThatSolveReadsBack) {
+  expectCaptureReplays(writeScene(0.5), dir_, 0.5);
+}
+
+TEST_F(CliOutputs, FrictionlessIslandsAreCapturedAsMuZeroContacts) {
+  expectCaptureReplays(writeScene(0.0), dir_, 0.0);
+}
+
+}  // namespace
