@@ -2,6 +2,7 @@
 // What one World::step did: per island, the solver used and why, the fallbacks tried, status,
 // iterations, time and the common residual; plus what the collision stage found and skipped.
 #include <coulomb/geometry/CollisionPipeline.hpp>
+#include <coulomb/geometry/Ids.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
 
 #include <cstddef>
@@ -23,6 +24,18 @@ struct IslandReport {
   double penetrationSeconds = 0.0;              // [s] split-impulse correction
 };
 
+/// What the joints did in one step (all islands together).
+struct JointStepReport {
+  std::size_t joints = 0;        // active joints (live, unbroken)
+  double maxLinearError = 0.0;   // [m] largest anchor gap / slider offset after the step
+  double maxAngularError = 0.0;  // [-, ~rad] largest axis misalignment after the step
+  int correctionIterations = 0;  // predicted-state correction solves
+  double correctionError = 0.0;  // [m or rad] largest predicted error left by the correction
+  bool correctionConverged = true;
+  double correctionSeconds = 0.0;             // [s] wall clock of the correction
+  std::vector<geometry::JointId> broken;  // joints that broke in this step
+};
+
 struct StepReport {
   std::uint64_t stepIndex = 0;    // index of this step (0 for the first)
   double timeStep = 0.0;          // [s] h used
@@ -32,6 +45,7 @@ struct StepReport {
   geometry::CollisionStats collision;                         // pairs, manifolds, points
   std::vector<geometry::CollisionFailure> collisionFailures;  // pairs skipped this step
   std::vector<IslandReport> islands;
+  JointStepReport joints;  // drift, predicted-state correction, breakage
   double seconds = 0.0;  // [s] wall clock of the whole step
 
   [[nodiscard]] std::size_t fallbacks() const {

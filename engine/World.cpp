@@ -94,12 +94,32 @@ BodyId World::createBody(const BodyDesc& desc) {
 
 void World::removeBody(BodyId id) {
   const std::size_t slot = slotOf(id);
+  for (const geometry::JointId joint : joints_.jointsOf(id)) joints_.remove(joint);
   std::erase_if(colliders_, [&](const geometry::Collider& c) { return c.body == id; });
   state_.clear(slot);
   names_[slot].clear();
   masses_[slot] = {};
   ++generations_[slot];
   freeSlots_.push_back(static_cast<std::uint32_t>(slot));
+}
+
+geometry::JointId World::createJoint(const JointDesc& desc) {
+  const std::string who = "joint '" + desc.name + "': ";
+  joints::JointDef def = desc;
+  bool anyDynamic = false;
+  for (auto [id, frame] : {std::pair{def.bodyA, &def.frameA}, std::pair{def.bodyB, &def.frameB}}) {
+    if (!id.valid()) continue;
+    if (!contains(id)) throw CoulombError(who + "a body id is stale or invalid");
+    frame->anchor -= masses_[id.index].centerOfMass;  // reference frame -> COM frame (same axes)
+    anyDynamic = anyDynamic || state_.isDynamic(id.index);
+  }
+  if (auto bad = joints::validateJointDef(def)) throw CoulombError(*bad);
+  if (!anyDynamic) throw CoulombError(who + "neither end is a dynamic body");
+  return joints_.create(std::move(def));
+}
+
+void World::removeJoint(geometry::JointId id) {
+  joints_.remove(id);
 }
 
 bool World::contains(BodyId id) const {
@@ -202,13 +222,15 @@ StepReport World::step(double h) {
   collision_.step(colliders_, state_.poses, [this](const auto& a, const auto& b) {  // manifolds
     return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index);
   });
-  const std::vector<Island> islands = islandBuilder_.build(dynamicMask(), contactEdges());
+  const std::vector<Island> islands = islandBuilder_.build(dynamicMask(), constraintEdges());
   std::vector<joints::RowSet> rows(islands.size());
   std::vector<std::vector<ContactRowSource>> sources(islands.size());
   for (std::size_t k = 0; k < islands.size(); ++k)  // v* -> v+
     report.islands.push_back(solveIsland(islands[k], h, rows[k], sources[k]));
+  joints_.correctDrift(state_, settings_.jointStabilization, h, report.joints);  // predicted state
   integrators::integratePositions(state_, h);     // x+ from v+
   correctPenetrations(h, rows, sources, report);  // split impulse
+  joints_.finishStep(state_, h, report.joints);   // reactions, breakage, drift
 
   state_.clearForces();
   report.collision = collision_.diagnostics().stats;
@@ -224,16 +246,23 @@ StepReport World::step(double h) {
 IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& rows,
                                 std::vector<ContactRowSource>& sources) {
   auto& manifolds = collision_.cache().manifolds();
-  rows = emitContactRows(island, manifolds, state_, settings_.contact, h, sources);
-  AssembledProblem assembled = assembler_.assemble(rows, state_);  // W = J M^-1 J^T, q = J v*
+  joints::RowSet all = joints_.emitRows(island, state_, settings_.jointStabilization, h);
+  const std::size_t jointBlocks = all.blocks.size();  // joint rows first, then the contacts
+  rows = emitContactRows(joints_.contactPart(island), manifolds, state_, settings_.contact, h,
+                         sources);
+  all.blocks.insert(all.blocks.end(), rows.blocks.begin(), rows.blocks.end());
+  AssembledProblem assembled = assembler_.assemble(all, state_);  // W = J M^-1 J^T, q = J v*
   if (problemObserver_) problemObserver_(island.id, assembled.problem);
   const std::string& override = solverOverrides_[island.bodies.front()];
   const solvers::SolvePlan plan = solvers::SolverChooser().choose(
       assembled.problem, {assembled.degreesOfFreedom},
       override.empty() ? settings_.solver : override, settings_.solverOptions);
   solvers::PlanOutcome outcome = solvers::solveWithFallback(assembled.problem, plan, registry_);
-  applyImpulses(rows, assembled.slots, outcome.best.impulses, state_);  // v+ = v* + M^-1 J^T r
-  storeContactImpulses(rows, assembled.slots, outcome.best.impulses, sources, manifolds);
+  applyImpulses(all, assembled.slots, outcome.best.impulses, state_);  // v+ = v* + M^-1 J^T r
+  joints_.storeImpulses(all, jointBlocks, assembled.slots, outcome.best.impulses);
+  const std::vector<RowBlockSlot> contactSlots(assembled.slots.begin() + jointBlocks,
+                                               assembled.slots.end());
+  storeContactImpulses(rows, contactSlots, outcome.best.impulses, sources, manifolds);
 
   IslandReport report;
   report.island = island.id;
@@ -256,6 +285,12 @@ void World::correctPenetrations(double h, std::vector<joints::RowSet>& rows,
     report.islands[k].penetrationSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
+}
+
+std::vector<ConstraintEdge> World::constraintEdges() {
+  std::vector<ConstraintEdge> edges = contactEdges();
+  joints_.appendEdges(edges);
+  return edges;
 }
 
 std::vector<ConstraintEdge> World::contactEdges() const {

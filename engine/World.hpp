@@ -4,6 +4,7 @@
 #include <coulomb/engine/BodyDesc.hpp>
 #include <coulomb/engine/ContactRowsEmitter.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/engine/JointStage.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
@@ -28,7 +29,7 @@ class World {
   /// naming the value (e.g. "body 'ball': mass must be finite and > 0 (got -1)") and adds nothing.
   geometry::BodyId createBody(const BodyDesc& desc);
   /// Removes the body and its colliders; its id (and any copy of it) becomes stale.
-  void removeBody(geometry::BodyId id);
+  void removeBody(geometry::BodyId id);  // and every joint attached to it
   /// True if `id` names a live body (right slot and generation).
   [[nodiscard]] bool contains(geometry::BodyId id) const;
   /// The id of the first live body named `name`, or an invalid id.
@@ -74,6 +75,22 @@ class World {
   /// bodies with different overrides, the one of its smallest body index wins.
   void setSolverOverride(geometry::BodyId id, const std::string& solver);
   void setSolver(const std::string& solver);  // WorldSettings::solver, validated
+
+  /// Validates `desc` (joints/JointDef.hpp; frames in each body's reference frame) and adds the
+  /// joint. Throws CoulombError naming the joint and the problem (stale body, non-unit axis, NaN
+  /// frame, a body joined to itself, no dynamic end, bad limit/motor) and adds nothing.
+  geometry::JointId createJoint(const JointDesc& desc);
+  void removeJoint(geometry::JointId id);  // throws CoulombError for a stale id
+  [[nodiscard]] bool contains(geometry::JointId id) const { return joints_.contains(id); }
+  [[nodiscard]] std::size_t jointCount() const { return joints_.count(); }
+  /// The joint as stored (frames in the bodies' COM frames); throws for a stale id.
+  [[nodiscard]] const joints::JointDef& joint(geometry::JointId id) const { return joints_.def(id); }
+  /// Average force and torque the joint applied to body B over the last step.
+  [[nodiscard]] const JointReaction& jointReaction(geometry::JointId id) const {
+    return joints_.reaction(id);
+  }
+  /// True once the joint's reaction exceeded its break force or torque (it no longer acts).
+  [[nodiscard]] bool jointBroken(geometry::JointId id) const { return joints_.broken(id); }
   /// Called for every island of every step with its assembled problem, before it is solved (the
   /// island id is that of the step's IslandReport; stepCount() is the index of the step being
   /// taken). For capturing problems, e.g. `coulomb run --capture`. Empty (the default) = none.
@@ -87,6 +104,7 @@ class World {
   IslandReport solveIsland(const Island& island, double h, joints::RowSet& rows,
                            std::vector<ContactRowSource>& sources);
   [[nodiscard]] std::vector<ConstraintEdge> contactEdges() const;
+  [[nodiscard]] std::vector<ConstraintEdge> constraintEdges();  // contacts, then joints
   [[nodiscard]] std::vector<std::uint8_t> dynamicMask() const;
   void correctPenetrations(double h, std::vector<joints::RowSet>& rows,
                            std::vector<std::vector<ContactRowSource>>& sources, StepReport& report);
@@ -104,6 +122,7 @@ class World {
   geometry::CollisionPipeline collision_;
   IslandBuilder islandBuilder_;
   ProblemAssembler assembler_;
+  JointStage joints_;
   solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
   ProblemObserver problemObserver_;
   double time_ = 0.0;

@@ -2,6 +2,7 @@
 // Every tunable of a World, with its unit, default and the reason for the default.
 #include <coulomb/engine/ContactSettings.hpp>
 #include <coulomb/geometry/CollisionPipeline.hpp>
+#include <coulomb/joints/Stabilization.hpp>
 #include <coulomb/solvers/SolverOptions.hpp>
 
 #include <Eigen/Core>
@@ -35,6 +36,9 @@ struct WorldSettings {
   ContactSettings contact;
   /// Speculative margin and contact-matching distances of the collision layer.
   geometry::CollisionSettings collision;
+  /// How joint drift is removed (joints/Stabilization.hpp; docs/tuning.md compares the policies
+  /// with figures). A joint's own JointDef::stabilization overrides it.
+  joints::Stabilization jointStabilization;
 
   static solvers::SolverOptions defaultSimulationSolverOptions() {
     solvers::SolverOptions options;

@@ -7,6 +7,7 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 
 namespace coulomb::integrators {
@@ -84,43 +85,48 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
     out.bottomRows<3>() = state.worldInverseInertias[body] * J.rightCols<3>().transpose();
     return out;
   };
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (const auto& [body, list] : touches)
-    for (const BodyTouch& a : list)
-      for (const BodyTouch& b : list) {
-        const Eigen::MatrixXd block = jac(a) * inverseMassTimesJt(body, jac(b));
-        for (int r = 0; r < block.rows(); ++r)
-          for (int c = 0; c < block.cols(); ++c)
-            triplets.emplace_back(offset[a.joint] + r, offset[b.joint] + c, block(r, c));
-      }
-  Eigen::SparseMatrix<double> A(n, n);
-  A.setFromTriplets(triplets.begin(), triplets.end());
+  // B = J_row M^-1 J_n^T: with J_row = J_n it is Bender's symmetric A; with J_row the Jacobian
+  // at the predicted state it is the Newton matrix of p -> C(x(t+h; p)) (times 1/h).
+  const auto assemble = [&](const std::vector<joints::ConstraintEval>& rowsAt) {
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (const auto& [body, list] : touches)
+      for (const BodyTouch& a : list)
+        for (const BodyTouch& b : list) {
+          const joints::RowJacobian& Ja =
+              a.sideB ? rowsAt[a.joint].jacobianB : rowsAt[a.joint].jacobianA;
+          const Eigen::MatrixXd block = Ja * inverseMassTimesJt(body, jac(b));
+          for (int r = 0; r < block.rows(); ++r)
+            for (int c = 0; c < block.cols(); ++c)
+              triplets.emplace_back(offset[a.joint] + r, offset[b.joint] + c, block(r, c));
+        }
+    Eigen::SparseMatrix<double> A(n, n);
+    A.setFromTriplets(triplets.begin(), triplets.end());
+    return A;
+  };
+  Eigen::SparseMatrix<double> A = assemble(start);
   double maxDiagonal = 0.0;
   for (int i = 0; i < n; ++i) maxDiagonal = std::max(maxDiagonal, A.coeff(i, i));
   if (maxDiagonal <= 0.0) return result;  // no joint touches a dynamic body
-  for (int i = 0; i < n; ++i) A.coeffRef(i, i) += 1e-10 * maxDiagonal;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor(A);
-  if (factor.info() != Eigen::Success) return result;
+  const double compliance = 1e-10 * maxDiagonal;
+  Eigen::SparseMatrix<double> identity(n, n);
+  identity.setIdentity();
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
 
   Eigen::VectorXd drift(n);
-  for (int pass = 0;; ++pass) {
-    // Predicted error of every joint at t+h with the current velocities.
+  std::vector<joints::ConstraintEval> predicted(jointCount);
+  // Predicted error of every joint at t+h with the current velocities; returns the largest |C|.
+  const auto predictErrors = [&] {
     double largest = 0.0;
     for (int j = 0; j < jointCount; ++j) {
       const joints::JointDef& def = *joints[j];
-      const joints::ConstraintEval predicted = joints::evaluateJoint(
-          def, predictedPoseOf(state, def.bodyA, h), predictedPoseOf(state, def.bodyB, h));
-      drift.segment(offset[j], predicted.rows()) = predicted.error;
-      largest = std::max(largest, predicted.error.cwiseAbs().maxCoeff());
+      predicted[j] = joints::evaluateJoint(def, predictedPoseOf(state, def.bodyA, h),
+                                           predictedPoseOf(state, def.bodyB, h));
+      drift.segment(offset[j], predicted[j].rows()) = predicted[j].error;
+      largest = std::max(largest, predicted[j].error.cwiseAbs().maxCoeff());
     }
-    if (pass == 0) result.initialError = largest;
-    result.finalError = largest;
-    result.converged = largest <= settings.tolerance;
-    if (result.converged || pass == settings.iterations || !drift.allFinite()) break;
-
-    const Eigen::VectorXd p = factor.solve(-drift / h);  // J M^-1 J^T p = dv = -d/h
-    if (!p.allFinite()) break;
-    result.iterations = pass + 1;
+    return drift.allFinite() ? largest : std::numeric_limits<double>::infinity();
+  };
+  const auto applyImpulse = [&](const Eigen::VectorXd& p) {
     for (const auto& [body, list] : touches)
       for (const BodyTouch& t : list) {
         const auto impulse = p.segment(offset[t.joint], start[t.joint].rows());
@@ -130,9 +136,68 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
         state.angularVelocities[body] +=
             state.worldInverseInertias[body] * (J.rightCols<3>().transpose() * impulse);
       }
-    for (int j = 0; j < jointCount; ++j)
-      result.impulses[j] += p.segment(offset[j], start[j].rows());
+  };
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> saved;
+  const auto saveVelocities = [&] {
+    saved.clear();
+    for (const auto& entry : touches)
+      saved.emplace_back(state.linearVelocities[entry.first], state.angularVelocities[entry.first]);
+  };
+  const auto restoreVelocities = [&] {
+    std::size_t k = 0;
+    for (const auto& entry : touches) {
+      state.linearVelocities[entry.first] = saved[k].first;
+      state.angularVelocities[entry.first] = saved[k++].second;
+    }
+  };
+
+  double largest = predictErrors();
+  result.initialError = largest;
+  Eigen::VectorXd total = Eigen::VectorXd::Zero(n);
+  double damping = 1e-12;  // Levenberg-Marquardt mu, relative to max diag(B^T B)
+  for (int pass = 0; pass < settings.iterations && largest > settings.tolerance; ++pass) {
+    // Newton step on p -> C(x(t+h; p)): B p = -C/h with B = J_pred M^-1 J_n^T, the rows'
+    // Jacobian taken at the predicted state (Bender's fixed J_n M^-1 J_n^T contracts only by
+    // ~h|omega| per pass and fails on a whipping chain's tip). B turns singular where a chain
+    // passes a straight configuration, so the step is Levenberg-Marquardt damped:
+    // (B^T B + mu I) p = B^T (-C/h), mu shrunk after a success and grown until the error drops.
+    const Eigen::SparseMatrix<double> B = assemble(predicted) + compliance * identity;
+    const Eigen::SparseMatrix<double> normal = B.transpose() * B;
+    const Eigen::VectorXd rhs = B.transpose() * (-drift / h);
+    double scaleOfNormal = 0.0;
+    for (int i = 0; i < n; ++i) scaleOfNormal = std::max(scaleOfNormal, normal.coeff(i, i));
+    saveVelocities();
+    const double norm = drift.norm();
+    double trial = largest;
+    bool improved = false;
+    Eigen::VectorXd p;
+    for (int attempt = 0; attempt < 12 && !improved; ++attempt) {
+      ldlt.compute(normal + damping * scaleOfNormal * identity);
+      if (ldlt.info() != Eigen::Success) break;
+      p = ldlt.solve(rhs);
+      if (!p.allFinite()) break;
+      applyImpulse(p);
+      trial = predictErrors();
+      improved = drift.norm() < norm;
+      if (improved) {
+        damping = std::max(damping * 0.1, 1e-12);
+      } else {
+        restoreVelocities();
+        damping *= 10.0;
+      }
+    }
+    if (!improved) {
+      predictErrors();  // velocities restored: refresh the predicted errors
+      break;
+    }
+    total += p;
+    largest = trial;
+    result.iterations = pass + 1;
   }
+  result.finalError = largest;
+  result.converged = largest <= settings.tolerance;
+  for (int j = 0; j < jointCount; ++j)
+    result.impulses[j] = total.segment(offset[j], start[j].rows());
   return result;
 }
 

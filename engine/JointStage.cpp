@@ -1,0 +1,212 @@
+#include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/JointStage.hpp>
+#include <coulomb/integrators/PredictedStateCorrection.hpp>
+#include <coulomb/joints/EmitRows.hpp>
+#include <coulomb/joints/JointConstraint.hpp>
+
+#include <algorithm>
+#include <chrono>
+
+namespace coulomb::engine {
+namespace {
+
+using Twist = Eigen::Matrix<double, 6, 1>;
+
+geometry::Pose poseOf(const geometry::BodyState& state, const geometry::BodyId& id) {
+  return id.valid() ? state.poses[id.index] : geometry::Pose::identity();
+}
+
+Twist twistOf(const geometry::BodyState& state, const geometry::BodyId& id) {
+  Twist t = Twist::Zero();
+  if (id.valid()) t << state.linearVelocities[id.index], state.angularVelocities[id.index];
+  return t;
+}
+
+}  // namespace
+
+geometry::JointId JointStage::create(joints::JointDef def) {
+  std::size_t slot = records_.size();
+  if (!freeSlots_.empty()) {
+    const auto lowest = std::min_element(freeSlots_.begin(), freeSlots_.end());
+    slot = *lowest;
+    freeSlots_.erase(lowest);
+  } else {
+    records_.emplace_back();
+  }
+  Record& r = records_[slot];
+  const std::uint32_t generation = r.generation;
+  r = Record{};
+  r.def = std::move(def);
+  r.generation = generation;
+  r.alive = true;
+  return {static_cast<std::uint32_t>(slot), generation};
+}
+
+std::size_t JointStage::slotOf(geometry::JointId id) const {
+  if (!contains(id))
+    throw CoulombError("joint id (index " + std::to_string(id.index) + ", generation " +
+                       std::to_string(id.generation) + ") is stale or invalid");
+  return id.index;
+}
+
+void JointStage::remove(geometry::JointId id) {
+  Record& r = records_[slotOf(id)];
+  r.alive = false;
+  ++r.generation;
+  freeSlots_.push_back(id.index);
+}
+
+bool JointStage::contains(geometry::JointId id) const {
+  return id.valid() && id.index < records_.size() && records_[id.index].alive &&
+         records_[id.index].generation == id.generation;
+}
+
+const joints::JointDef& JointStage::def(geometry::JointId id) const {
+  return records_[slotOf(id)].def;
+}
+const JointReaction& JointStage::reaction(geometry::JointId id) const {
+  return records_[slotOf(id)].reaction;
+}
+bool JointStage::broken(geometry::JointId id) const {
+  return records_[slotOf(id)].broken;
+}
+
+std::size_t JointStage::count() const {
+  return static_cast<std::size_t>(
+      std::count_if(records_.begin(), records_.end(), [](const Record& r) { return r.alive; }));
+}
+
+std::vector<geometry::JointId> JointStage::jointsOf(geometry::BodyId body) const {
+  std::vector<geometry::JointId> out;
+  for (std::size_t i = 0; i < records_.size(); ++i)
+    if (records_[i].alive && (records_[i].def.bodyA == body || records_[i].def.bodyB == body))
+      out.push_back({static_cast<std::uint32_t>(i), records_[i].generation});
+  return out;
+}
+
+const joints::Stabilization& JointStage::policyOf(const Record& r,
+                                                  const joints::Stabilization& world) const {
+  return r.def.stabilization ? *r.def.stabilization : world;
+}
+
+void JointStage::appendEdges(std::vector<ConstraintEdge>& edges) {
+  firstEdge_ = edges.size();
+  edgeJoints_.clear();
+  const auto index = [](const geometry::BodyId& id) {
+    return id.valid() ? static_cast<std::int32_t>(id.index) : ConstraintEdge::kNoBody;
+  };
+  for (std::size_t i = 0; i < records_.size(); ++i) {
+    Record& r = records_[i];
+    r.impulseOnB.setZero();
+    if (!r.alive || r.broken) continue;
+    edges.push_back({index(r.def.bodyA), index(r.def.bodyB)});
+    edgeJoints_.push_back(static_cast<std::uint32_t>(i));
+  }
+}
+
+Island JointStage::contactPart(const Island& island) const {
+  Island out = island;
+  std::erase_if(out.constraints,
+                [&](std::int32_t edge) { return static_cast<std::size_t>(edge) >= firstEdge_; });
+  return out;
+}
+
+joints::RowSet JointStage::emitRows(const Island& island, const geometry::BodyState& state,
+                                    const joints::Stabilization& worldPolicy, double h) {
+  joints::RowSet rows;
+  for (const std::int32_t edge : island.constraints) {
+    if (static_cast<std::size_t>(edge) < firstEdge_) continue;
+    const std::uint32_t slot = edgeJoints_[edge - firstEdge_];
+    Record& r = records_[slot];
+    joints::JointBodies bodies;
+    bodies.poseA = poseOf(state, r.def.bodyA);
+    bodies.poseB = poseOf(state, r.def.bodyB);
+    bodies.twistA = twistOf(state, r.def.bodyA);
+    bodies.twistB = twistOf(state, r.def.bodyB);
+    const std::size_t first = rows.blocks.size();
+    const int count =
+        joints::emitJointRows(r.def, bodies, policyOf(r, worldPolicy), h, rows.blocks);
+    for (int k = 0; k < count; ++k) {
+      joints::RowBlock& block = rows.blocks[first + k];
+      block.sourceKey = (static_cast<std::uint64_t>(slot) << 8) | static_cast<std::uint64_t>(k);
+      const bool warm =
+          k < static_cast<int>(r.warmStarts.size()) && r.warmStarts[k].size() == block.rows();
+      block.warmStart = warm ? r.warmStarts[k] : joints::RowVector::Zero(block.rows());
+    }
+    r.armB = bodies.poseB.rotation * r.def.frameB.anchor;
+    r.warmStarts.assign(count, joints::RowVector());
+  }
+  return rows;
+}
+
+void JointStage::storeImpulses(const joints::RowSet& rows, std::size_t jointBlocks,
+                               const std::vector<RowBlockSlot>& slots,
+                               const Eigen::VectorXd& lambda) {
+  for (std::size_t k = 0; k < jointBlocks; ++k) {
+    const joints::RowBlock& block = rows.blocks[k];
+    Record& r = records_[block.sourceKey >> 8];
+    const joints::RowVector impulse = lambda.segment(slots[k].offset, slots[k].rows);
+    r.warmStarts[block.sourceKey & 0xff] = impulse;
+    r.impulseOnB += block.jacobianB.transpose() * impulse;
+  }
+}
+
+void JointStage::correctDrift(geometry::BodyState& state, const joints::Stabilization& worldPolicy,
+                              double h, JointStepReport& report) {
+  std::vector<const joints::JointDef*> defs;
+  std::vector<std::uint32_t> slots;
+  joints::PredictedStateSettings settings;  // the tightest of the joints' settings
+  bool first = true;
+  for (const std::uint32_t slot : edgeJoints_) {
+    const Record& r = records_[slot];
+    const joints::Stabilization& policy = policyOf(r, worldPolicy);
+    if (policy.method != joints::StabilizationMethod::PredictedState) continue;
+    const auto dynamic = [&](const geometry::BodyId& id) {
+      return id.valid() && state.isDynamic(id.index);
+    };
+    if (!dynamic(r.def.bodyA) && !dynamic(r.def.bodyB)) continue;
+    defs.push_back(&r.def);
+    slots.push_back(slot);
+    settings.iterations = first ? policy.predictedState.iterations
+                                : std::max(settings.iterations, policy.predictedState.iterations);
+    settings.tolerance = first ? policy.predictedState.tolerance
+                               : std::min(settings.tolerance, policy.predictedState.tolerance);
+    first = false;
+  }
+  if (defs.empty()) return;
+  const auto started = std::chrono::steady_clock::now();
+  const integrators::PredictedStateResult result =
+      integrators::correctPredictedState(state, defs, settings, h);
+  for (std::size_t j = 0; j < slots.size(); ++j) {
+    Record& r = records_[slots[j]];
+    const joints::ConstraintEval start =
+        joints::evaluateJoint(r.def, poseOf(state, r.def.bodyA), poseOf(state, r.def.bodyB));
+    r.impulseOnB += start.jacobianB.transpose() * result.impulses[j];
+  }
+  report.correctionIterations = result.iterations;
+  report.correctionError = result.finalError;
+  report.correctionConverged = result.converged;
+  report.correctionSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+void JointStage::finishStep(const geometry::BodyState& state, double h, JointStepReport& report) {
+  for (const std::uint32_t slot : edgeJoints_) {
+    Record& r = records_[slot];
+    ++report.joints;
+    r.reaction.force = r.impulseOnB.head<3>() / h;
+    r.reaction.torque = r.impulseOnB.tail<3>() / h - r.armB.cross(r.reaction.force);
+    if (r.reaction.force.norm() > r.def.breakForce ||
+        r.reaction.torque.norm() > r.def.breakTorque) {
+      r.broken = true;
+      report.broken.push_back({slot, r.generation});
+    }
+    const joints::ConstraintEval eval =
+        joints::evaluateJoint(r.def, poseOf(state, r.def.bodyA), poseOf(state, r.def.bodyB));
+    const joints::JointError error = joints::jointError(r.def, eval);
+    report.maxLinearError = std::max(report.maxLinearError, error.linear);
+    report.maxAngularError = std::max(report.maxAngularError, error.angular);
+  }
+}
+
+}  // namespace coulomb::engine
