@@ -5,3 +5,7 @@ coulomb_add_bench(ArticulationBench.cpp LINKS coulomb::joints coulomb::integrato
                   nlohmann_json::nlohmann_json)
 target_compile_definitions(ArticulationBench PRIVATE
                            COULOMB_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
+# Articulations in the World: contact assembly of a tree with 10 contacts, ms/step of the arm scene.
+coulomb_add_bench(ArticulationContactBench.cpp LINKS coulomb::engine)
+target_compile_definitions(ArticulationContactBench PRIVATE
+                           COULOMB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -94,6 +94,8 @@ BodyId World::createBody(const BodyDesc& desc) {
 
 void World::removeBody(BodyId id) {
   const std::size_t slot = slotOf(id);
+  if (articulations_.isLink(slot))
+    throw CoulombError("removeBody: body '" + names_[slot] + "' is a link of an articulation");
   for (const geometry::JointId joint : joints_.jointsOf(id)) joints_.remove(joint);
   std::erase_if(colliders_, [&](const geometry::Collider& c) { return c.body == id; });
   state_.clear(slot);
@@ -111,7 +113,7 @@ geometry::JointId World::createJoint(const JointDesc& desc) {
     if (!id.valid()) continue;
     if (!contains(id)) throw CoulombError(who + "a body id is stale or invalid");
     frame->anchor -= masses_[id.index].centerOfMass;  // reference frame -> COM frame (same axes)
-    anyDynamic = anyDynamic || state_.isDynamic(id.index);
+    anyDynamic = anyDynamic || state_.isDynamic(id.index) || articulations_.isLink(id.index);
   }
   if (auto bad = joints::validateJointDef(def)) throw CoulombError(*bad);
   if (!anyDynamic) throw CoulombError(who + "neither end is a dynamic body");
@@ -120,6 +122,22 @@ geometry::JointId World::createJoint(const JointDesc& desc) {
 
 void World::removeJoint(geometry::JointId id) {
   joints_.remove(id);
+}
+
+geometry::ArticulationId World::createArticulation(const ArticulationDesc& desc) {
+  ArticulationStage::Prepared prepared = articulations_.prepare(desc, settings_);  // may throw
+  std::vector<BodyId> proxies;
+  for (const BodyDesc& proxy : prepared.proxies) proxies.push_back(createBody(proxy));
+  return articulations_.add(std::move(prepared), std::move(proxies), state_);
+}
+
+void World::setArticulationState(geometry::ArticulationId id, const Eigen::VectorXd& q,
+                                 const Eigen::VectorXd& qd) {
+  articulations_.setState(id, q, qd, state_);
+}
+
+void World::applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd& tau) {
+  articulations_.applyJointForces(id, tau);
 }
 
 bool World::contains(BodyId id) const {
@@ -219,20 +237,28 @@ StepReport World::step(double h) {
   }
 
   integrators::predictFreeVelocities(state_, settings_.gravity, h);                 // v*
+  articulations_.predictVelocities(settings_.gravity, h, state_);                   // trees' v*
   collision_.step(colliders_, state_.poses, [this](const auto& a, const auto& b) {  // manifolds
-    return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index);
+    if (!articulations_.keepPair(a.body.index, b.body.index)) return false;
+    return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index) ||
+           articulations_.isLink(a.body.index) || articulations_.isLink(b.body.index);
   });
-  const std::vector<Island> islands = islandBuilder_.build(dynamicMask(), constraintEdges());
+  std::vector<ConstraintEdge> edges = constraintEdges();
+  articulations_.appendConstraintEdges(edges, h);  // tree joint limits and loop closures
+  articulations_.mapEdges(edges);                  // a tree is one unit (its root link's proxy)
+  const std::vector<Island> islands = islandBuilder_.build(dynamicMask(), edges);
   std::vector<joints::RowSet> rows(islands.size());
   std::vector<std::vector<ContactRowSource>> sources(islands.size());
   for (std::size_t k = 0; k < islands.size(); ++k)  // v* -> v+
     report.islands.push_back(solveIsland(islands[k], h, rows[k], sources[k]));
   joints_.correctDrift(state_, settings_.jointStabilization, h, report.joints);  // predicted state
   integrators::integratePositions(state_, h);     // x+ from v+
+  articulations_.integratePositions(h, state_);   // q+ from qd+; link proxies follow
   correctPenetrations(h, rows, sources, report);  // split impulse
   joints_.finishStep(state_, h, report.joints);   // reactions, breakage, drift
 
   state_.clearForces();
+  articulations_.clearForces();
   report.collision = collision_.diagnostics().stats;
   report.collisionFailures = collision_.diagnostics().failures;
   ++stepCount_;
@@ -246,12 +272,16 @@ StepReport World::step(double h) {
 IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& rows,
                                 std::vector<ContactRowSource>& sources) {
   auto& manifolds = collision_.cache().manifolds();
-  joints::RowSet all = joints_.emitRows(island, state_, settings_.jointStabilization, h);
+  const Island bodyPart = articulations_.withoutTreeConstraints(island);
+  joints::RowSet all = joints_.emitRows(bodyPart, state_, settings_.jointStabilization, h);
   const std::size_t jointBlocks = all.blocks.size();  // joint rows first, then the contacts
-  rows = emitContactRows(joints_.contactPart(island), manifolds, state_, settings_.contact, h,
+  rows = emitContactRows(joints_.contactPart(bodyPart), manifolds, state_, settings_.contact, h,
                          sources);
   all.blocks.insert(all.blocks.end(), rows.blocks.begin(), rows.blocks.end());
-  AssembledProblem assembled = assembler_.assemble(all, state_);  // W = J M^-1 J^T, q = J v*
+  const std::size_t treeBlocks = all.blocks.size();  // tree limits and closures last
+  articulations_.emitRows(island, state_, h, all);
+  AssembledProblem assembled =
+      assembler_.assemble(all, state_, &articulations_);  // W = J M^-1 J^T, q = J v*
   if (problemObserver_) problemObserver_(island.id, assembled.problem);
   const std::string& override = solverOverrides_[island.bodies.front()];
   const solvers::SolvePlan plan = solvers::SolverChooser().choose(
@@ -259,6 +289,8 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
       override.empty() ? settings_.solver : override, settings_.solverOptions);
   solvers::PlanOutcome outcome = solvers::solveWithFallback(assembled.problem, plan, registry_);
   applyImpulses(all, assembled.slots, outcome.best.impulses, state_);  // v+ = v* + M^-1 J^T r
+  articulations_.applyImpulses(all, assembled.slots, outcome.best.impulses, state_);  // qd+
+  articulations_.storeImpulses(all, treeBlocks, assembled.slots, outcome.best.impulses);
   joints_.storeImpulses(all, jointBlocks, assembled.slots, outcome.best.impulses);
   const std::vector<RowBlockSlot> contactSlots(assembled.slots.begin() + jointBlocks,
                                                assembled.slots.end());
@@ -281,7 +313,8 @@ void World::correctPenetrations(double h, std::vector<joints::RowSet>& rows,
                                 StepReport& report) {
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto started = std::chrono::steady_clock::now();
-    correctPenetration(rows[k], sources[k], settings_.contact.penetration, h, state_);
+    correctPenetration(rows[k], sources[k], settings_.contact.penetration, h, state_,
+                       &articulations_);
     report.islands[k].penetrationSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
@@ -306,6 +339,7 @@ std::vector<ConstraintEdge> World::contactEdges() const {
 std::vector<std::uint8_t> World::dynamicMask() const {
   std::vector<std::uint8_t> mask(state_.size());
   for (std::size_t i = 0; i < state_.size(); ++i) mask[i] = state_.isDynamic(i) ? 1 : 0;
+  articulations_.markIslandBodies(mask);  // a tree counts once, as its root link's proxy
   return mask;
 }
 

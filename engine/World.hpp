@@ -1,6 +1,7 @@
 #pragma once
 // The World owns the body state, the colliders and the settings, and advances them in time.
 // step() reads as the data flow of ARCHITECTURE.md section 2 with the stages that exist so far.
+#include <coulomb/engine/ArticulationStage.hpp>
 #include <coulomb/engine/BodyDesc.hpp>
 #include <coulomb/engine/ContactRowsEmitter.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
@@ -49,6 +50,19 @@ class World {
   void applyForceAtPoint(geometry::BodyId id, const Eigen::Vector3d& force,
                          const Eigen::Vector3d& worldPoint);
   void applyTorque(geometry::BodyId id, const Eigen::Vector3d& torque);
+
+  /// Validates `desc` (ArticulationDesc.hpp) and adds the tree with one Kinematic *proxy* body
+  /// per link, named "articulation/link", that carries the link's colliders and follows its pose
+  /// (docs/architecture.md, "Articulations"). Throws CoulombError naming the problem; adds nothing.
+  /// A link proxy cannot be removed with removeBody; it may be an end of a joint (createJoint).
+  geometry::ArticulationId createArticulation(const ArticulationDesc& desc);
+  /// Joint state, link poses, link proxies and the model (ArticulationStage.hpp).
+  [[nodiscard]] const ArticulationStage& articulations() const { return articulations_; }
+  /// Sets q (nq) and qd (nv); throws CoulombError for a stale id or a bad vector.
+  void setArticulationState(geometry::ArticulationId id, const Eigen::VectorXd& q,
+                            const Eigen::VectorXd& qd);
+  /// Accumulates generalised joint forces tau (nv values) for the next step; cleared each step.
+  void applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd& tau);
 
   /// Advances by h [s] (finite, > 0; else CoulombError) or by settings().timeStep.
   StepReport step(double h);
@@ -123,6 +137,7 @@ class World {
   IslandBuilder islandBuilder_;
   ProblemAssembler assembler_;
   JointStage joints_;
+  ArticulationStage articulations_;
   solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
   ProblemObserver problemObserver_;
   double time_ = 0.0;

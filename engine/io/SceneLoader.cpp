@@ -230,6 +230,128 @@ BodyDesc parseBody(const JsonNode& node, const Materials& materials,
   return desc;
 }
 
+// --- articulations (docs/scene-format.md "articulations") ---------------------------------
+
+joints::tree::TreeJoint parseTreeJoint(const JsonNode& node, const std::string& linkName) {
+  using joints::tree::TreeJoint;
+  node.allowOnly(
+      {"type", "name", "position", "orientation", "axis", "lower", "upper", "damping", "armature"});
+  const std::string type = node.string("type", "revolute");
+  const std::string name = node.string("name", linkName);
+  const Pose pose = parsePose(node);
+  Eigen::Vector3d axis = node.vector3("axis", Eigen::Vector3d::UnitZ());
+  if (axis.norm() < 1e-12) node.child("axis").fail("must be non-zero");
+  axis.normalize();
+  TreeJoint joint;
+  if (type == "revolute")
+    joint = TreeJoint::revolute(name, pose, axis);
+  else if (type == "continuous")
+    joint = TreeJoint::continuous(name, pose, axis);
+  else if (type == "prismatic")
+    joint = TreeJoint::prismatic(name, pose, axis);
+  else if (type == "fixed")
+    joint = TreeJoint::fixed(name, pose);
+  else if (type == "spherical")
+    joint = TreeJoint::spherical(name, pose);
+  else if (type == "floating")
+    joint = TreeJoint::floating(name, pose);
+  else {
+    std::string message = "unknown joint type '" + type + "'";
+    if (auto s = nearestName(
+            type, {"revolute", "continuous", "prismatic", "fixed", "spherical", "floating"}))
+      message += "; did you mean '" + *s + "'?";
+    node.child("type").fail(message);
+  }
+  joint.lower = node.number("lower", joint.lower);
+  joint.upper = node.number("upper", joint.upper);
+  if (joint.lower > joint.upper) node.fail("\"lower\" must be <= \"upper\"");
+  joint.damping = node.number("damping", 0.0);
+  joint.armature = node.number("armature", 0.0);
+  if (joint.damping < 0.0) node.child("damping").fail("must be >= 0");
+  if (joint.armature < 0.0) node.child("armature").fail("must be >= 0");
+  return joint;
+}
+
+/// Index of the link named by `node` ("world" = -1) among `names`.
+int linkIndex(const JsonNode& node, const std::vector<std::string>& names) {
+  const std::string name = node.string();
+  if (name == "world") return -1;
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found == names.end()) {
+    std::string message = "unknown link '" + name + "' (links are named before they are used)";
+    if (auto s = nearestName(name, names)) message += "; did you mean '" + *s + "'?";
+    node.fail(message);
+  }
+  return static_cast<int>(found - names.begin());
+}
+
+Eigen::VectorXd parseVector(const JsonNode& node) {
+  Eigen::VectorXd v(static_cast<Eigen::Index>(node.arraySize()));
+  for (std::size_t i = 0; i < node.arraySize(); ++i)
+    v[static_cast<Eigen::Index>(i)] = node.element(i).number();
+  return v;
+}
+
+ArticulationDesc parseArticulation(const JsonNode& node, const Materials& materials,
+                                   const std::filesystem::path& base) {
+  node.allowOnly(
+      {"name", "links", "q", "qd", "self_collision", "error_reduction", "loop_closures"});
+  ArticulationDesc desc;
+  desc.name = node.string("name", "articulation");
+  std::vector<std::string> names;
+  const JsonNode links = node.child("links");
+  for (std::size_t i = 0; i < links.arraySize(); ++i) {
+    const JsonNode l = links.element(i);
+    l.allowOnly(
+        {"name", "parent", "joint", "density", "mass", "inertia", "center_of_mass", "shapes"});
+    ArticulationLinkDesc link;
+    link.name = l.string("name", "link" + std::to_string(i));
+    link.parent = l.has("parent") ? linkIndex(l.child("parent"), names) : -1;
+    link.joint = parseTreeJoint(l.child("joint"), link.name);
+    if (l.has("density")) link.density = l.child("density").positiveNumber();
+    if (l.has("mass")) {
+      if (!l.has("inertia")) l.fail("\"inertia\" is required when \"mass\" is given");
+      geometry::SpatialInertia mass;
+      mass.mass = l.child("mass").positiveNumber();
+      mass.inertiaAboutCom = parseInertia(l.child("inertia"));
+      mass.centerOfMass = l.vector3("center_of_mass", Eigen::Vector3d::Zero());
+      if (auto problem = geometry::checkPhysicalValidity(mass)) l.child("inertia").fail(*problem);
+      link.inertia = mass;
+    }
+    if (l.has("shapes")) {
+      const JsonNode shapes = l.child("shapes");
+      for (std::size_t k = 0; k < shapes.arraySize(); ++k)
+        link.shapes.push_back(parseShape(shapes.element(k), materials, base));
+    }
+    names.push_back(link.name);
+    desc.links.push_back(std::move(link));
+  }
+  if (node.has("q")) desc.q = parseVector(node.child("q"));
+  if (node.has("qd")) desc.qd = parseVector(node.child("qd"));
+  if (node.has("self_collision")) desc.selfCollision = node.child("self_collision").raw() == true;
+  desc.errorReduction = node.number("error_reduction", desc.errorReduction);
+  if (node.has("loop_closures")) {
+    const JsonNode closures = node.child("loop_closures");
+    for (std::size_t k = 0; k < closures.arraySize(); ++k) {
+      const JsonNode c = closures.element(k);
+      c.allowOnly({"link_a", "anchor_a", "link_b", "anchor_b", "axes"});
+      LoopClosureDesc closure;
+      closure.linkA = linkIndex(c.child("link_a"), names);
+      if (closure.linkA < 0) c.child("link_a").fail("must be a link (\"world\" only as link_b)");
+      closure.anchorA = c.vector3("anchor_a", Eigen::Vector3d::Zero());
+      closure.linkB = c.has("link_b") ? linkIndex(c.child("link_b"), names) : -1;
+      closure.anchorB = c.vector3("anchor_b", Eigen::Vector3d::Zero());
+      const std::string axes = c.string("axes", "xyz");
+      closure.axes = {axes.find('x') != std::string::npos, axes.find('y') != std::string::npos,
+                      axes.find('z') != std::string::npos};
+      if (axes.empty() || axes.find_first_not_of("xyz") != std::string::npos)
+        c.child("axes").fail("expected a subset of \"xyz\" (got \"" + axes + "\")");
+      desc.loopClosures.push_back(closure);
+    }
+  }
+  return desc;
+}
+
 // Sections reserved for later issues: accepted when empty, refused (not silently ignored) when
 // they hold anything the engine cannot honour yet.
 void checkReserved(const JsonNode& root, const char* key, const char* what) {
@@ -256,7 +378,7 @@ Scene parseScene(std::string_view text, const std::string& source,
   }
   const JsonNode root(document, source, "");
   root.allowOnly({"name", "description", "gravity", "time_step", "steps", "materials", "bodies",
-                  "joints", "solver", "urdf"});
+                  "joints", "solver", "urdf", "articulations"});
   Scene scene;
   scene.source = source;
   scene.name = root.string("name", std::filesystem::path(source).stem().string());
@@ -274,9 +396,17 @@ Scene parseScene(std::string_view text, const std::string& source,
     for (const std::string& name : node.objectKeys())
       materials[name] = parseMaterial(node.child(name.c_str()));
   }
-  const JsonNode bodies = root.child("bodies");
-  for (std::size_t i = 0; i < bodies.arraySize(); ++i)
-    scene.bodies.push_back(parseBody(bodies.element(i), materials, baseDirectory));
+  if (root.has("bodies") || !root.has("articulations")) {  // a scene of trees alone needs none
+    const JsonNode bodies = root.child("bodies");
+    for (std::size_t i = 0; i < bodies.arraySize(); ++i)
+      scene.bodies.push_back(parseBody(bodies.element(i), materials, baseDirectory));
+  }
+  if (root.has("articulations")) {
+    const JsonNode articulations = root.child("articulations");
+    for (std::size_t i = 0; i < articulations.arraySize(); ++i)
+      scene.articulations.push_back(
+          parseArticulation(articulations.element(i), materials, baseDirectory));
+  }
   return scene;
 }
 
@@ -305,6 +435,13 @@ World buildWorld(const Scene& scene) {
                       [&](const char* field) { return message.rfind(field, 0) == 0; });
       throw CoulombError(scene.source + ": bodies[" + std::to_string(i) + "]" +
                          (startsWithField ? "." : ": ") + message);
+    }
+  }
+  for (std::size_t i = 0; i < scene.articulations.size(); ++i) {
+    try {
+      world.createArticulation(scene.articulations[i]);
+    } catch (const CoulombError& e) {
+      throw CoulombError(scene.source + ": articulations[" + std::to_string(i) + "]: " + e.what());
     }
   }
   return world;

@@ -2,6 +2,7 @@
 // JSON scenes (docs/scene-format.md): bodies, shapes, materials, gravity, time step and step
 // count, with reserved sections (joints, solver, urdf) that later issues fill. Every error is a
 // CoulombError "<file>: <JSON path>: <problem>", e.g. "drop.json: bodies[3].mass: must be > 0".
+#include <coulomb/engine/ArticulationDesc.hpp>
 #include <coulomb/engine/BodyDesc.hpp>
 #include <coulomb/engine/World.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
@@ -21,6 +22,7 @@ struct Scene {
   WorldSettings settings;   // gravity and time step
   std::uint64_t steps = 1000;
   std::vector<BodyDesc> bodies;
+  std::vector<ArticulationDesc> articulations;  // created after the bodies, in file order
 };
 
 /// Reads and parses a scene file; mesh file paths are relative to the file's folder.
