@@ -252,7 +252,7 @@ StepReport World::step(double h) {
   for (std::size_t k = 0; k < islands.size(); ++k)  // v* -> v+
     report.islands.push_back(solveIsland(islands[k], h, rows[k], sources[k]));
   joints_.correctDrift(state_, settings_.jointStabilization, h, report.joints);  // predicted state
-  integrators::integratePositions(state_, h);     // x+ from v+
+  integrators::integratePositions(state_, h);                                    // x+ from v+
   articulations_.integratePositions(h, state_);   // q+ from qd+; link proxies follow
   correctPenetrations(h, rows, sources, report);  // split impulse
   joints_.finishStep(state_, h, report.joints);   // reactions, breakage, drift
