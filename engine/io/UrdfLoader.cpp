@@ -369,13 +369,23 @@ UrdfModel parseUrdf(const std::string& text, const std::string& source,
         ". Check it with `check_urdf " + source + "`");
   }
   UrdfModel model = ModelBuilder(doc, *urdf, source, baseDirectory, options).build();
-  std::map<std::string, int> counts;  // urdfdom's own complaints, e.g. unknown geometry types
+  // urdfdom's own complaints, e.g. unknown geometry types, once per text; "... Link [a]" and
+  // "... Link [b]" become "... Link [a], [b]".
+  std::map<std::string, std::vector<std::string>> names;
+  std::map<std::string, int> counts;
   std::vector<std::string> order;
-  for (const std::string& m : messages)
-    if (counts[m]++ == 0) order.push_back(m);
-  for (const std::string& m : order)
-    model.warnings.push_back("urdfdom: " + m +
-                             (counts[m] > 1 ? " (x" + std::to_string(counts[m]) + ")" : ""));
+  for (const std::string& m : messages) {
+    const std::size_t open = m.find('['), close = m.rfind(']');
+    const bool named = open != std::string::npos && close == m.size() - 1 && close > open;
+    const std::string key = named ? m.substr(0, open) : m;
+    if (counts[key]++ == 0) order.push_back(key);
+    if (named) names[key].push_back(m.substr(open, close - open + 1));  // "[name]"
+  }
+  for (const std::string& key : order)
+    model.warnings.push_back(
+        "urdfdom: " + key +
+        (names.count(key) ? joinNames(names[key])
+                          : (counts[key] > 1 ? " (x" + std::to_string(counts[key]) + ")" : "")));
   return model;
 }
 

@@ -16,6 +16,7 @@ struct CommandError : std::runtime_error {
 
 void registerSceneCommands(CLI::App& app);   // run, scenes          (SceneCommands.cpp)
 void registerSolverCommands(CLI::App& app);  // solve, solvers       (SolverCommands.cpp)
+void registerUrdfCommands(CLI::App& app);    // urdf info, dynamics  (UrdfCommands.cpp)
 void registerCompareCommand(CLI::App& app);  // compare              (CompareCommand.cpp)
 void registerBenchCommand(CLI::App& app);    // bench                (BenchCommand.cpp)
 

@@ -8,6 +8,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   coulomb::cli::registerSceneCommands(app);
   coulomb::cli::registerSolverCommands(app);
+  coulomb::cli::registerUrdfCommands(app);
   coulomb::cli::registerCompareCommand(app);
   coulomb::cli::registerBenchCommand(app);
   try {

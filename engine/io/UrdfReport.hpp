@@ -1,0 +1,34 @@
+#pragma once
+// What `coulomb urdf info` and `coulomb urdf dynamics` print (docs/urdf.md, "CLI"): a UrdfModel as
+// text or JSON, and forward dynamics of a loaded model at a joint state given by joint name.
+#include <coulomb/engine/io/UrdfLoader.hpp>
+
+#include <Eigen/Core>
+
+#include <string>
+
+namespace coulomb::engine::io {
+
+/// Joint positions, velocities and torques in the model's DOF order (UrdfModel::dofNames).
+struct UrdfJointState {
+  Eigen::VectorXd q, qdot, tau;
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};
+};
+
+/// Parses {"q": {"joint": value, ...}, "qdot": {...}, "tau": {...}, "gravity": [gx, gy, gz]};
+/// every key optional, missing joints are zero. Throws CoulombError "<source>: <key>: <problem>"
+/// for an unknown joint (with the nearest name), a non-number, or an unknown key.
+UrdfJointState parseUrdfJointState(const std::string& text, const std::string& source,
+                                   const UrdfModel& model);
+
+/// {"joints": [...], "qddot": [...], "mass_matrix": [[...]], "bias_forces": [...]} for a model
+/// whose joints all have one DOF (fixed base), numbers in shortest round-trip form.
+std::string urdfDynamicsJson(const UrdfModel& model, const UrdfJointState& state);
+
+/// The tree for people: bodies with their joints, masses, inertia validity, fused links and
+/// collision shapes, then mimic couplings and warnings.
+std::string urdfInfoText(const UrdfModel& model);
+/// The same as JSON, with "dofs" (velocity coordinates) and "joints" (DOF joint names in order).
+std::string urdfInfoJson(const UrdfModel& model);
+
+}  // namespace coulomb::engine::io
