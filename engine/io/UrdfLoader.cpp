@@ -409,4 +409,20 @@ joints::tree::Articulation toArticulation(const UrdfModel& model) {
   }
 }
 
+ArticulationDesc toArticulationDesc(const UrdfModel& model, const std::string& name) {
+  ArticulationDesc desc;
+  desc.name = name;
+  for (const UrdfBody& body : model.bodies) {
+    ArticulationLinkDesc link;
+    link.name = body.name;
+    link.parent = body.parent;
+    link.joint = body.joint;
+    link.inertia = body.inertia;
+    for (const UrdfCollision& c : body.collisions)
+      link.shapes.push_back({c.shape, c.pose, c.material, {}});
+    desc.links.push_back(std::move(link));
+  }
+  return desc;
+}
+
 }  // namespace coulomb::engine::io

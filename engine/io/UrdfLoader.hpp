@@ -5,6 +5,7 @@
 // mimic couplings and the warnings the file deserved. `toArticulation` turns it into a
 // joints::tree::Articulation. Every error is a CoulombError
 // "<file>:<line>: <element>: <problem>. <what to fix>".
+#include <coulomb/engine/ArticulationDesc.hpp>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/geometry/Collider.hpp>
 #include <coulomb/geometry/Pose.hpp>
@@ -112,5 +113,11 @@ UrdfModel parseUrdf(const std::string& text, const std::string& source,
 /// The reduced-coordinate tree (bodies in order, gravity of the model). Throws CoulombError if
 /// the Articulation refuses the model (it should not for a model this loader produced).
 joints::tree::Articulation toArticulation(const UrdfModel& model);
+
+/// The model as a World articulation (World::createArticulation): links with their joints,
+/// inertias (always explicit) and collision shapes; `name` prefixes the link proxies. The root
+/// joint (weld or floating) is placed at UrdfOptions::basePose as loaded. Mimic couplings are not
+/// carried (not enforced yet).
+ArticulationDesc toArticulationDesc(const UrdfModel& model, const std::string& name);
 
 }  // namespace coulomb::engine::io
