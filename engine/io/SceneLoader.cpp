@@ -1,5 +1,6 @@
 #include <coulomb/engine/io/JsonReader.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/engine/io/SolverSection.hpp>
 
 #if __has_include(<coulomb/geometry/MeshLoader.hpp>)
 #include <coulomb/geometry/MeshLoader.hpp>
@@ -198,9 +199,10 @@ Eigen::Matrix3d parseInertia(const JsonNode& node) {
 BodyDesc parseBody(const JsonNode& node, const Materials& materials,
                    const std::filesystem::path& base) {
   node.allowOnly({"name", "type", "position", "orientation", "linear_velocity", "angular_velocity",
-                  "density", "mass", "inertia", "center_of_mass", "shapes"});
+                  "density", "mass", "inertia", "center_of_mass", "shapes", "solver"});
   BodyDesc desc;
   desc.name = node.string("name", "");
+  if (node.has("solver")) desc.solver = parseSolverRequest(node.child("solver"));
   if (node.has("type")) desc.motionType = parseMotionType(node.child("type"));
   desc.pose = parsePose(node);
   desc.linearVelocity = node.vector3("linear_velocity", Eigen::Vector3d::Zero());
@@ -387,7 +389,7 @@ Scene parseScene(std::string_view text, const std::string& source,
   if (root.has("time_step")) scene.settings.timeStep = root.child("time_step").positiveNumber();
   if (root.has("steps")) scene.steps = root.child("steps").unsignedInteger();
   checkReserved(root, "joints", "joints");
-  checkReserved(root, "solver", "solver settings");
+  if (root.has("solver")) parseSolverSection(root.child("solver"), scene.settings);
   checkReserved(root, "urdf", "URDF includes");
 
   Materials materials;

@@ -167,6 +167,8 @@ TEST(SceneLoader, WorldErrorsAreAnchoredAtTheBody) {
 TEST(SceneLoader, ReservedSectionsAreRefusedUntilSupported) {
   EXPECT_CONTAINS(errorOf(R"({"bodies": [], "joints": [{"type": "hinge"}]})"),
                   "joints: joints are not supported yet");
-  EXPECT_CONTAINS(errorOf(R"({"bodies": [], "solver": {"name": "pgs"}})"), "solver settings");
+  // The solver section is supported (SceneSolverSectionTest); an unknown key in it is refused.
+  EXPECT_CONTAINS(errorOf(R"({"bodies": [], "solver": {"nme": "pgs"}})"),
+                  "solver.nme: unknown key 'nme'");
   EXPECT_CONTAINS(errorOf(R"({"bodies": [], "urdf": ["robot.urdf"]})"), "URDF includes");
 }

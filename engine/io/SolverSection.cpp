@@ -1,0 +1,95 @@
+#include <coulomb/engine/io/SolverSection.hpp>
+#include <coulomb/solvers/SolverRegistry.hpp>
+
+#include <algorithm>
+#include <sstream>
+
+namespace coulomb::engine::io {
+namespace {
+
+bool parseBool(const JsonNode& node) {
+  if (!node.raw().is_boolean()) node.fail("expected true or false");
+  return node.raw().get<bool>();
+}
+
+double nonNegative(const JsonNode& node) {
+  const double value = node.number();
+  if (value < 0.0) node.fail("must be >= 0");
+  return value;
+}
+
+PenetrationMethod parsePenetrationMethod(const JsonNode& node) {
+  const std::string method = node.string();
+  if (method == "split_impulse") return PenetrationMethod::SplitImpulse;
+  if (method == "baumgarte") return PenetrationMethod::Baumgarte;
+  if (method == "none") return PenetrationMethod::None;
+  std::string message = "unknown penetration method '" + method + "'";
+  if (auto s = nearestName(method, {"split_impulse", "baumgarte", "none"}))
+    message += "; did you mean '" + *s + "'?";
+  node.fail(message + " (split_impulse, baumgarte or none)");
+}
+
+void parsePenetration(const JsonNode& node, PenetrationSettings& settings) {
+  node.allowOnly({"method", "beta", "slop", "iterations"});
+  if (node.has("method")) settings.method = parsePenetrationMethod(node.child("method"));
+  if (node.has("beta")) {
+    settings.beta = node.child("beta").number();
+    if (settings.beta < 0.0 || settings.beta > 1.0) node.child("beta").fail("must be in [0, 1]");
+  }
+  if (node.has("slop")) settings.slop = nonNegative(node.child("slop"));
+  if (node.has("iterations")) {
+    const std::uint64_t sweeps = node.child("iterations").unsignedInteger();
+    if (sweeps < 1 || sweeps > 100000) node.child("iterations").fail("must be in [1, 100000]");
+    settings.iterations = static_cast<int>(sweeps);
+  }
+}
+
+}  // namespace
+
+std::string parseSolverRequest(const JsonNode& node) {
+  const std::string request = node.string();
+  if (request == "auto") return request;
+  const std::vector<std::string> known = solvers::SolverRegistry::builtIn().names();
+  std::string chain = request;
+  if (!chain.empty() && chain.back() == '!') chain.pop_back();
+  std::stringstream names(chain);
+  std::string name;
+  bool any = false;
+  while (std::getline(names, name, ',')) {
+    any = true;
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::string message = "unknown solver '" + name + "'";
+    std::vector<std::string> candidates = known;
+    candidates.emplace_back("auto");
+    if (auto s = nearestName(name, candidates)) message += "; did you mean '" + *s + "'?";
+    node.fail(message + " (see `coulomb solvers`)");
+  }
+  if (!any) node.fail("expected \"auto\", a solver name, \"NAME!\" or a chain \"A,B\"");
+  return request;
+}
+
+void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
+  node.allowOnly({"name", "tolerance", "max_iterations", "time_limit", "warm_start",
+                  "restitution_threshold", "speculative_contacts", "speculative_margin",
+                  "penetration"});
+  solvers::SolverOptions& options = settings.solverOptions;
+  if (node.has("name")) settings.solver = parseSolverRequest(node.child("name"));
+  if (node.has("tolerance")) options.tolerance = node.child("tolerance").positiveNumber();
+  if (node.has("max_iterations")) {
+    const std::uint64_t iterations = node.child("max_iterations").unsignedInteger();
+    if (iterations > 100000000) node.child("max_iterations").fail("must be <= 1e8");
+    options.maxIterations = static_cast<int>(iterations);
+  }
+  if (node.has("time_limit")) options.timeLimitSeconds = node.child("time_limit").positiveNumber();
+  if (node.has("warm_start")) options.useWarmStart = parseBool(node.child("warm_start"));
+  ContactSettings& contact = settings.contact;
+  if (node.has("restitution_threshold"))
+    contact.restitutionThreshold = nonNegative(node.child("restitution_threshold"));
+  if (node.has("speculative_contacts"))
+    contact.speculativeContacts = parseBool(node.child("speculative_contacts"));
+  if (node.has("speculative_margin"))
+    settings.collision.speculativeMargin = nonNegative(node.child("speculative_margin"));
+  if (node.has("penetration")) parsePenetration(node.child("penetration"), contact.penetration);
+}
+
+}  // namespace coulomb::engine::io

@@ -1,0 +1,20 @@
+#pragma once
+// The "solver" section of a JSON scene (docs/scene-format.md "Solver"): the world's contact solver
+// and its common options, and the contact settings of the step (restitution threshold,
+// speculative contacts, penetration correction). Internal to engine/io (it reads JsonNode).
+#include <coulomb/engine/WorldSettings.hpp>
+#include <coulomb/engine/io/JsonReader.hpp>
+
+#include <string>
+
+namespace coulomb::engine::io {
+
+/// Reads `node` (an object) into `settings`; keys that are absent keep their defaults. Errors name
+/// the JSON path, e.g. "scene.json: solver.penetration.beta: must be in [0, 1] (got 2)".
+void parseSolverSection(const JsonNode& node, WorldSettings& settings);
+
+/// Checks a solver request ("auto", a built-in solver name, "NAME!" or a chain "A,B,C") at `node`,
+/// suggesting the nearest built-in name for a typo; returns it unchanged.
+std::string parseSolverRequest(const JsonNode& node);
+
+}  // namespace coulomb::engine::io
