@@ -9,6 +9,8 @@
 #include <coulomb/joints/tree/TreeJoint.hpp>
 
 #include <array>
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +42,31 @@ struct LoopClosureDesc {
   std::array<bool, 3> axes = {true, true, true};
 };
 
+/// A motor on the 1-DOF joint (revolute, continuous, prismatic) of link `link`: one bounded row
+/// in joint space, qd_link = target velocity, with |impulse| <= maxEffort * h. Position mode is an
+/// implicit PD servo: target velocity = positionGain * (target - q) / h (clamped to
+/// +-maxVelocity), so the error shrinks by the factor (1 - positionGain) per step while the
+/// effort suffices. Velocity mode drives qd to `target`.
+enum class JointMotorMode : std::uint8_t { Position, Velocity };
+struct JointMotorDesc {
+  int link = 0;
+  JointMotorMode mode = JointMotorMode::Position;
+  double target = 0.0;        // [rad or m] (Position), [rad/s or m/s] (Velocity)
+  double maxEffort = 0.0;     // [N m or N], > 0
+  double positionGain = 0.2;  // (0, 1]: fraction of the position error removed per step
+  double maxVelocity = std::numeric_limits<double>::infinity();  // [rad/s or m/s], > 0
+};
+
+/// A mimic coupling (URDF <mimic>): q_follower = multiplier * q_leader + offset, one equality
+/// row in joint space (qd_follower - multiplier * qd_leader = 0, Baumgarte on the position
+/// error with ArticulationDesc::errorReduction). Both links need a 1-DOF joint.
+struct JointCouplingDesc {
+  int follower = 0;
+  int leader = 0;
+  double multiplier = 1.0;
+  double offset = 0.0;
+};
+
 struct ArticulationDesc {
   std::string name;                         // prefix of the link proxies' names ("name/link")
   std::vector<ArticulationLinkDesc> links;  // parent-first
@@ -48,7 +75,10 @@ struct ArticulationDesc {
   /// Contacts between links of this tree (adjacent links always excluded). Off by default.
   bool selfCollision = false;
   std::vector<LoopClosureDesc> loopClosures;
-  /// Fraction of a loop-closure or joint-limit position error removed per step (Baumgarte).
+  std::vector<JointMotorDesc> motors;
+  std::vector<JointCouplingDesc> couplings;
+  /// Fraction of a loop-closure, coupling or joint-limit position error removed per step
+  /// (Baumgarte).
   double errorReduction = 0.2;
 };
 

@@ -34,6 +34,15 @@ constexpr double kLimitMargin = 1e-4;
 // Relative diagonal compliance of rows on a tree (see addDelassusBlocks).
 constexpr double kRegularization = 1e-9;
 
+// sourceKey layout of the stage's blocks: articulation slot in bits 32-47, then a kind bit
+// (closure 31, motor 30, coupling 29; none: a limit, (link << 1) | upper) and the index. Coupling
+// blocks also carry a tag in bits 56-63 so that treeRows can recognise them among any blocks.
+constexpr std::uint64_t kClosureBit = 1u << 31;
+constexpr std::uint64_t kMotorBit = 1u << 30;
+constexpr std::uint64_t kCouplingBit = 1u << 29;
+constexpr std::uint64_t kTagMask = 0xffull << 56;
+constexpr std::uint64_t kCouplingTag = 0xc5ull << 56;
+
 bool coversEveryRow(const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda) {
   return !slots.empty() && lambda.size() >= slots.back().offset + slots.back().rows;
 }
@@ -71,6 +80,16 @@ void ArticulationStage::appendConstraintEdges(std::vector<ConstraintEdge>& edges
         edges.push_back({representative, ConstraintEdge::kNoBody});
       }
     }
+    for (std::size_t m = 0; m < r.motors.size(); ++m) {  // always active
+      constraints_.push_back(
+          {static_cast<std::int32_t>(a), ConstraintKind::Motor, static_cast<std::int32_t>(m)});
+      edges.push_back({representative, ConstraintEdge::kNoBody});
+    }
+    for (std::size_t c = 0; c < r.couplings.size(); ++c) {
+      constraints_.push_back(
+          {static_cast<std::int32_t>(a), ConstraintKind::Coupling, static_cast<std::int32_t>(c)});
+      edges.push_back({representative, ConstraintEdge::kNoBody});
+    }
     for (std::size_t c = 0; c < r.closures.size(); ++c) {
       const int linkB = r.closures[c].linkB;
       constraints_.push_back(
@@ -86,6 +105,92 @@ Island ArticulationStage::withoutTreeConstraints(const Island& island) const {
     return static_cast<std::size_t>(k) >= firstConstraintEdge_;
   });
   return out;
+}
+
+RowBlock ArticulationStage::jointRateBlock(const Record& r, int i, double s) const {
+  // u = s qd_i for link i's 1-DOF joint, written as the relative twist of the child and its
+  // parent along the joint axis (exactly s qd_i after the joint-space transform).
+  const joints::tree::TreeJoint& joint = r.model->link(i).joint;
+  const int parent = r.model->parent(i);
+  const Eigen::Vector3d axis = r.linkPoses[i].rotation * joint.axis;  // world
+  RowBlock block;
+  block.bodyB = r.linkBodies[i];
+  if (parent >= 0) block.bodyA = r.linkBodies[parent];
+  block.jacobianA = RowJacobian::Zero(1, 6);
+  block.jacobianB = RowJacobian::Zero(1, 6);
+  if (joint.type == TreeJointType::Revolute || joint.type == TreeJointType::Continuous) {
+    block.jacobianB.row(0).tail<3>() = s * axis.transpose();
+    block.jacobianA.row(0).tail<3>() = -s * axis.transpose();
+  } else {  // prismatic: velocity of the child origin relative to the parent point there
+    const Eigen::Vector3d lever =
+        r.linkPoses[i].position -
+        (parent >= 0 ? r.linkPoses[parent].position : Eigen::Vector3d::Zero());
+    block.jacobianB.row(0).head<3>() = s * axis.transpose();
+    block.jacobianA.row(0) << -s * axis.transpose(), -s * lever.cross(axis).transpose();
+  }
+  return block;
+}
+
+RowBlock ArticulationStage::motorBlock(const Record& r, int m, double h) const {
+  // Bounded row qd_i - target velocity = 0 with |lambda| <= maxEffort h.
+  const JointMotorDesc& motor = r.motors[m];
+  double velocity = motor.target;
+  if (motor.mode == JointMotorMode::Position) {
+    const double q = r.q[r.model->qIndex(motor.link)];
+    velocity = std::clamp(motor.positionGain * (motor.target - q) / h, -motor.maxVelocity,
+                          motor.maxVelocity);
+  }
+  RowBlock block = jointRateBlock(r, motor.link, 1.0);
+  block.kind = RowKind::Bounded;
+  block.bias = RowVector::Constant(1, -velocity);
+  block.lower = RowVector::Constant(1, -motor.maxEffort * h);
+  block.upper = RowVector::Constant(1, motor.maxEffort * h);
+  block.warmStart = RowVector::Constant(1, r.motorWarm[m]);
+  const auto articulation = static_cast<std::uint64_t>(&r - records_.data());
+  block.sourceKey = (articulation << 32) | kMotorBit | static_cast<std::uint64_t>(m);
+  return block;
+}
+
+RowBlock ArticulationStage::couplingBlock(std::int32_t a, int c, double h) const {
+  // Equality row qd_f - multiplier qd_l + errorReduction (q_f - multiplier q_l - offset) / h = 0.
+  // It spans up to four links, more than a RowBlock's two sides: its body Jacobians are zero, the
+  // bias carries J v* (v* = the tree's qd now), and treeRows gives the joint-space row itself
+  // (recognised by the tagged sourceKey).
+  const Record& r = records_[a];
+  const JointCouplingDesc& coupling = r.couplings[c];
+  const int f = coupling.follower, l = coupling.leader;
+  const double error =
+      r.q[r.model->qIndex(f)] - coupling.multiplier * r.q[r.model->qIndex(l)] - coupling.offset;
+  const double rate = r.qd[r.model->vIndex(f)] - coupling.multiplier * r.qd[r.model->vIndex(l)];
+  RowBlock block;
+  block.kind = RowKind::Equality;
+  block.bodyA = r.linkBodies[f];
+  block.bodyB = r.linkBodies[l];
+  block.jacobianA = RowJacobian::Zero(1, 6);
+  block.jacobianB = RowJacobian::Zero(1, 6);
+  block.bias = RowVector::Constant(1, rate + r.errorReduction * error / h);
+  block.warmStart = RowVector::Constant(1, r.couplingWarm[c]);
+  block.sourceKey = kCouplingTag | (static_cast<std::uint64_t>(a) << 32) | kCouplingBit |
+                    static_cast<std::uint64_t>(c);
+  return block;
+}
+
+std::optional<Eigen::RowVectorXd> ArticulationStage::couplingRow(const RowBlock& block) const {
+  const std::uint64_t key = block.sourceKey;
+  if (block.kind != RowKind::Equality || (key & kTagMask) != kCouplingTag ||
+      (key & kCouplingBit) == 0)
+    return std::nullopt;
+  const auto a = static_cast<std::size_t>((key >> 32) & 0xffffu);
+  const auto c = static_cast<std::size_t>(key & 0x1fffffffu);
+  if (a >= records_.size() || c >= records_[a].couplings.size()) return std::nullopt;
+  const Record& r = records_[a];
+  const JointCouplingDesc& coupling = r.couplings[c];
+  if (!block.bodyA.valid() || block.bodyA.index != r.linkBodies[coupling.follower].index)
+    return std::nullopt;
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(r.model->nv());
+  row[r.model->vIndex(coupling.follower)] += 1.0;
+  row[r.model->vIndex(coupling.leader)] -= coupling.multiplier;
+  return row;
 }
 
 RowBlock ArticulationStage::rowBlockOf(const TreeConstraint& c, const geometry::BodyState& state,
@@ -120,32 +225,20 @@ RowBlock ArticulationStage::rowBlockOf(const TreeConstraint& c, const geometry::
       block.warmStart[row] = r.closureWarm[c.index][axis];
       ++row;
     }
-    block.sourceKey = (static_cast<std::uint64_t>(c.articulation) << 32) | (1u << 31) | c.index;
+    block.sourceKey = (static_cast<std::uint64_t>(c.articulation) << 32) | kClosureBit |
+                      static_cast<std::uint64_t>(c.index);
     return block;
   }
 
-  // Limit of link i's 1-DOF joint: u = s qd_i >= 0 written as the relative twist of the child
-  // and its parent along the joint axis (exactly qd_i after the joint-space transform).
+  if (c.kind == ConstraintKind::Motor) return motorBlock(r, c.index, h);
+  if (c.kind == ConstraintKind::Coupling) return couplingBlock(c.articulation, c.index, h);
+
+  // Limit of link i's 1-DOF joint: u = s qd_i >= 0.
   const int i = c.index;
   const joints::tree::TreeJoint& joint = r.model->link(i).joint;
-  const int parent = r.model->parent(i);
   const double s = c.kind == ConstraintKind::Lower ? 1.0 : -1.0;
-  const Eigen::Vector3d axis = r.linkPoses[i].rotation * joint.axis;  // world
+  block = jointRateBlock(r, i, s);
   block.kind = RowKind::Unilateral;
-  block.bodyB = r.linkBodies[i];
-  if (parent >= 0) block.bodyA = r.linkBodies[parent];
-  block.jacobianA = RowJacobian::Zero(1, 6);
-  block.jacobianB = RowJacobian::Zero(1, 6);
-  if (joint.type == TreeJointType::Revolute) {
-    block.jacobianB.row(0).tail<3>() = s * axis.transpose();
-    block.jacobianA.row(0).tail<3>() = -s * axis.transpose();
-  } else {  // prismatic: velocity of the child origin relative to the parent point there
-    const Eigen::Vector3d lever =
-        r.linkPoses[i].position -
-        (parent >= 0 ? r.linkPoses[parent].position : Eigen::Vector3d::Zero());
-    block.jacobianB.row(0).head<3>() = s * axis.transpose();
-    block.jacobianA.row(0) << -s * axis.transpose(), -s * lever.cross(axis).transpose();
-  }
   const double q = r.q[r.model->qIndex(i)];
   const double distance = c.kind == ConstraintKind::Lower ? q - joint.lower : joint.upper - q;
   // Speculative while apart (reach the limit exactly), Baumgarte when past it.
@@ -171,17 +264,20 @@ void ArticulationStage::storeImpulses(const joints::RowSet& rows, std::size_t fi
                                       const Eigen::VectorXd& lambda) {
   for (std::size_t k = firstBlock; k < rows.blocks.size(); ++k) {
     const std::uint64_t key = rows.blocks[k].sourceKey;
-    Record& r = records_[key >> 32];
-    const auto index = static_cast<std::size_t>(key & 0x7fffffffu);
+    Record& r = records_[(key >> 32) & 0xffffu];
     const auto impulse = lambda.segment(slots[k].offset, slots[k].rows);
-    if ((key & (1u << 31)) != 0) {
+    if ((key & kClosureBit) != 0) {
+      const auto index = static_cast<std::size_t>(key & (kClosureBit - 1));
       int row = 0;
       for (int axis = 0; axis < 3; ++axis)
         if (r.closures[index].axes[axis]) r.closureWarm[index][axis] = impulse[row++];
-    } else if ((index & 1u) == 0) {
-      r.lowerWarm[index >> 1] = impulse[0];
+    } else if ((key & kMotorBit) != 0) {
+      r.motorWarm[key & (kMotorBit - 1)] = impulse[0];
+    } else if ((key & kCouplingBit) != 0) {
+      r.couplingWarm[key & (kCouplingBit - 1)] = impulse[0];
     } else {
-      r.upperWarm[index >> 1] = impulse[0];
+      const auto index = static_cast<std::size_t>(key & (kCouplingBit - 1));
+      ((index & 1u) == 0 ? r.lowerWarm : r.upperWarm)[index >> 1] = impulse[0];
     }
   }
 }
@@ -192,6 +288,16 @@ std::vector<ArticulationStage::TreeRows> ArticulationStage::treeRows(
   std::map<std::int32_t, std::size_t> treeOf;  // articulation slot -> index in `trees`
   for (int k = 0; k < static_cast<int>(rows.blocks.size()); ++k) {
     const RowBlock& block = rows.blocks[k];
+    if (std::optional<Eigen::RowVectorXd> row = couplingRow(block)) {  // joint space already
+      const LinkRef link = linkOfBody_[block.bodyA.index];
+      auto [it, inserted] = treeOf.try_emplace(link.articulation, trees.size());
+      if (inserted)
+        trees.emplace_back(link.articulation, *records_[link.articulation].model,
+                           records_[link.articulation].q);
+      trees[it->second].blocks.push_back(k);
+      trees[it->second].jacobians.emplace_back(std::move(*row));
+      continue;
+    }
     for (const bool sideB : {false, true}) {
       const geometry::BodyId& body = sideB ? block.bodyB : block.bodyA;
       if (!body.valid() || !isLink(body.index)) continue;

@@ -47,6 +47,48 @@ geometry::SpatialInertia linkInertia(const ArticulationLinkDesc& link,
   return sum;  // mass 0 without shapes: a massless frame (allowed by the tree model)
 }
 
+bool isOneDof(const joints::tree::TreeJoint& joint) {
+  using joints::tree::TreeJointType;
+  return joint.type == TreeJointType::Revolute || joint.type == TreeJointType::Continuous ||
+         joint.type == TreeJointType::Prismatic;
+}
+
+void checkMotorsAndCouplings(const ArticulationDesc& desc, const Articulation& model,
+                             const std::string& who) {
+  const int n = model.linkCount();
+  auto oneDofLink = [&](int link, const std::string& what) {
+    if (link < 0 || link >= n)
+      throw CoulombError(who + ": " + what + " names link " + std::to_string(link) +
+                         " (must be < " + std::to_string(n) + ")");
+    if (!isOneDof(model.link(link).joint))
+      throw CoulombError(who + ": " + what + " on link '" + model.link(link).name + "': joint '" +
+                         model.link(link).joint.name +
+                         "' is not revolute, continuous or prismatic");
+  };
+  for (std::size_t k = 0; k < desc.motors.size(); ++k) {
+    const JointMotorDesc& m = desc.motors[k];
+    const std::string what = "motor " + std::to_string(k);
+    oneDofLink(m.link, what);
+    if (!std::isfinite(m.target)) throw CoulombError(who + ": " + what + ": target is not finite");
+    if (!std::isfinite(m.maxEffort) || m.maxEffort <= 0.0)
+      throw CoulombError(who + ": " + what + ": max effort must be finite and > 0");
+    if (!(m.positionGain > 0.0 && m.positionGain <= 1.0))
+      throw CoulombError(who + ": " + what + ": position gain must be in (0, 1]");
+    if (!(m.maxVelocity > 0.0))
+      throw CoulombError(who + ": " + what + ": max velocity must be > 0");
+  }
+  for (std::size_t k = 0; k < desc.couplings.size(); ++k) {
+    const JointCouplingDesc& c = desc.couplings[k];
+    const std::string what = "coupling " + std::to_string(k);
+    oneDofLink(c.follower, what);
+    oneDofLink(c.leader, what);
+    if (c.follower == c.leader)
+      throw CoulombError(who + ": " + what + ": follower and leader are the same joint");
+    if (!std::isfinite(c.multiplier) || !std::isfinite(c.offset))
+      throw CoulombError(who + ": " + what + ": multiplier and offset must be finite");
+  }
+}
+
 }  // namespace
 
 ArticulationStage::Prepared ArticulationStage::prepare(const ArticulationDesc& desc,
@@ -82,6 +124,8 @@ ArticulationStage::Prepared ArticulationStage::prepare(const ArticulationDesc& d
       throw CoulombError(who + ": a loop closure constrains no axis");
   }
 
+  checkMotorsAndCouplings(desc, *out.model, who);
+
   const joints::tree::TreeKinematics kin = joints::tree::forwardKinematics(*out.model, out.q);
   for (int i = 0; i < n; ++i) {
     BodyDesc proxy;
@@ -110,6 +154,10 @@ ArticulationId ArticulationStage::add(Prepared prepared, std::vector<BodyId> pro
   r.closureWarm.assign(r.closures.size(), Eigen::Vector3d::Zero());
   r.lowerWarm.assign(r.links.size(), 0.0);
   r.upperWarm.assign(r.links.size(), 0.0);
+  r.motors = prepared.desc.motors;
+  r.motorWarm.assign(r.motors.size(), 0.0);
+  r.couplings = prepared.desc.couplings;
+  r.couplingWarm.assign(r.couplings.size(), 0.0);
   r.errorReduction = prepared.desc.errorReduction;
   r.selfCollision = prepared.desc.selfCollision;
   const auto slot = static_cast<std::int32_t>(records_.size());
@@ -184,6 +232,21 @@ void ArticulationStage::applyJointForces(ArticulationId id, const Eigen::VectorX
     throw CoulombError(quoted(r.name) + ": joint forces need " + std::to_string(r.model->nv()) +
                        " finite values (got " + std::to_string(tau.size()) + ")");
   r.tau += tau;
+}
+
+void ArticulationStage::setMotorTarget(ArticulationId id, int motor, double target) {
+  Record& r = record(id);
+  if (motor < 0 || motor >= static_cast<int>(r.motors.size()))
+    throw CoulombError(quoted(r.name) + ": no motor " + std::to_string(motor) + " (it has " +
+                       std::to_string(r.motors.size()) + ")");
+  if (!std::isfinite(target))
+    throw CoulombError(quoted(r.name) + ": motor " + std::to_string(motor) +
+                       ": target is not finite");
+  r.motors[motor].target = target;
+}
+
+const std::vector<JointMotorDesc>& ArticulationStage::motors(ArticulationId id) const {
+  return record(id).motors;
 }
 
 void ArticulationStage::updateProxies(Record& r, geometry::BodyState& state) const {

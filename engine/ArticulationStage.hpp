@@ -13,9 +13,10 @@
 //  - the impulses update qd by M^-1 J_t^T lambda (one O(n) pass per tree);
 //  - islands: a tree is one unit: every link maps to its root link's proxy (the representative),
 //    so a link touching a body joins the tree and the body in one island and one problem.
-// Joint limits (lower/upper of revolute and prismatic tree joints) and loop closures are row
-// blocks on the proxies as well (relative twist of parent and child along the joint axis; point
-// coincidence), with island edges appended after every other edge of the step.
+// Joint limits (lower/upper of revolute and prismatic tree joints), joint motors, mimic couplings
+// and loop closures are row blocks on the proxies as well (relative twist of parent and child along
+// the joint axis; point coincidence), with island edges appended after every other edge of the
+// step.
 #include <coulomb/engine/ArticulationDesc.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
@@ -26,6 +27,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -71,6 +73,10 @@ class ArticulationStage {
                 geometry::BodyState& state);
   /// Accumulates generalised joint forces (nv values) for the next step; cleared every step.
   void applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd& tau);
+  /// Motor `motor` (ArticulationDesc::motors order) gets a new target (finite).
+  void setMotorTarget(geometry::ArticulationId id, int motor, double target);
+  /// The motors as created (targets as last set).
+  [[nodiscard]] const std::vector<JointMotorDesc>& motors(geometry::ArticulationId id) const;
 
   [[nodiscard]] bool isLink(std::size_t bodyIndex) const {
     return bodyIndex < linkOfBody_.size() && linkOfBody_[bodyIndex].valid();
@@ -124,15 +130,19 @@ class ArticulationStage {
     std::vector<LoopClosureDesc> closures;
     std::vector<Eigen::Vector3d> closureWarm;
     std::vector<double> lowerWarm, upperWarm;  // per link
+    std::vector<JointMotorDesc> motors;
+    std::vector<double> motorWarm;
+    std::vector<JointCouplingDesc> couplings;
+    std::vector<double> couplingWarm;
     double errorReduction = 0.2;
     bool selfCollision = false;
     std::uint32_t generation = 0;
   };
-  enum class ConstraintKind : std::uint8_t { Lower, Upper, Closure };
+  enum class ConstraintKind : std::uint8_t { Lower, Upper, Closure, Motor, Coupling };
   struct TreeConstraint {
     std::int32_t articulation = 0;
     ConstraintKind kind = ConstraintKind::Lower;
-    std::int32_t index = 0;  // link (limits) or closure
+    std::int32_t index = 0;  // link (limits), closure, motor or coupling
   };
   struct TreeRows;  // per tree: the joint-space Jacobians of the row blocks on it
 
@@ -141,6 +151,12 @@ class ArticulationStage {
   void updateProxies(Record& r, geometry::BodyState& state) const;
   [[nodiscard]] std::vector<TreeRows> treeRows(const joints::RowSet& rows,
                                                const geometry::BodyState& state) const;
+  [[nodiscard]] joints::RowBlock jointRateBlock(const Record& r, int link, double sign) const;
+  [[nodiscard]] joints::RowBlock motorBlock(const Record& r, int motor, double h) const;
+  [[nodiscard]] joints::RowBlock couplingBlock(std::int32_t articulation, int coupling,
+                                               double h) const;
+  /// The joint-space row of a coupling block (sourceKey tagged kCouplingTag), else nullopt.
+  [[nodiscard]] std::optional<Eigen::RowVectorXd> couplingRow(const joints::RowBlock& block) const;
   [[nodiscard]] joints::RowBlock rowBlockOf(const TreeConstraint& c,
                                             const geometry::BodyState& state, double h) const;
   [[nodiscard]] std::vector<Eigen::VectorXd> jointImpulses(const std::vector<TreeRows>& trees,

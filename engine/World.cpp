@@ -140,6 +140,10 @@ void World::applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd&
   articulations_.applyJointForces(id, tau);
 }
 
+void World::setJointMotorTarget(geometry::ArticulationId id, int motor, double target) {
+  articulations_.setMotorTarget(id, motor, target);
+}
+
 bool World::contains(BodyId id) const {
   return id.valid() && id.index < state_.size() && state_.alive[id.index] != 0 &&
          generations_[id.index] == id.generation;

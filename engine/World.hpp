@@ -63,6 +63,8 @@ class World {
                             const Eigen::VectorXd& qd);
   /// Accumulates generalised joint forces tau (nv values) for the next step; cleared each step.
   void applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd& tau);
+  /// Changes the target of motor `motor` (ArticulationDesc::motors order); CoulombError if absent.
+  void setJointMotorTarget(geometry::ArticulationId id, int motor, double target);
 
   /// Advances by h [s] (finite, > 0; else CoulombError) or by settings().timeStep.
   StepReport step(double h);

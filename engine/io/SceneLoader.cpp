@@ -1,5 +1,6 @@
 #include <coulomb/engine/io/JsonReader.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/engine/io/UrdfScene.hpp>
 #include <coulomb/engine/io/SolverSection.hpp>
 
 #if __has_include(<coulomb/geometry/MeshLoader.hpp>)
@@ -356,7 +357,7 @@ ArticulationDesc parseArticulation(const JsonNode& node, const Materials& materi
 
 // Sections reserved for later issues: accepted when empty, refused (not silently ignored) when
 // they hold anything the engine cannot honour yet.
-void checkReserved(const JsonNode& root, const char* key, const char* what) {
+[[maybe_unused]] void checkReserved(const JsonNode& root, const char* key, const char* what) {
   if (!root.has(key)) return;
   const JsonNode node = root.child(key);
   if (!node.raw().empty())
@@ -390,7 +391,6 @@ Scene parseScene(std::string_view text, const std::string& source,
   if (root.has("steps")) scene.steps = root.child("steps").unsignedInteger();
   checkReserved(root, "joints", "joints");
   if (root.has("solver")) parseSolverSection(root.child("solver"), scene.settings);
-  checkReserved(root, "urdf", "URDF includes");
 
   Materials materials;
   if (root.has("materials")) {
@@ -398,7 +398,8 @@ Scene parseScene(std::string_view text, const std::string& source,
     for (const std::string& name : node.objectKeys())
       materials[name] = parseMaterial(node.child(name.c_str()));
   }
-  if (root.has("bodies") || !root.has("articulations")) {  // a scene of trees alone needs none
+  // A scene of trees alone (articulations, urdf) needs no bodies.
+  if (root.has("bodies") || (!root.has("articulations") && !root.has("urdf"))) {
     const JsonNode bodies = root.child("bodies");
     for (std::size_t i = 0; i < bodies.arraySize(); ++i)
       scene.bodies.push_back(parseBody(bodies.element(i), materials, baseDirectory));
@@ -408,6 +409,10 @@ Scene parseScene(std::string_view text, const std::string& source,
     for (std::size_t i = 0; i < articulations.arraySize(); ++i)
       scene.articulations.push_back(
           parseArticulation(articulations.element(i), materials, baseDirectory));
+  }
+  if (root.has("urdf")) {  // robots after the articulations (docs/scene-format.md "urdf")
+    std::vector<ArticulationDesc> robots = parseUrdfSection(root.child("urdf"), baseDirectory);
+    std::move(robots.begin(), robots.end(), std::back_inserter(scene.articulations));
   }
   return scene;
 }

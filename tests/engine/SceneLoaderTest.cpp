@@ -170,5 +170,7 @@ TEST(SceneLoader, ReservedSectionsAreRefusedUntilSupported) {
   // The solver section is supported (SceneSolverSectionTest); an unknown key in it is refused.
   EXPECT_CONTAINS(errorOf(R"({"bodies": [], "solver": {"nme": "pgs"}})"),
                   "solver.nme: unknown key 'nme'");
-  EXPECT_CONTAINS(errorOf(R"({"bodies": [], "urdf": ["robot.urdf"]})"), "URDF includes");
+  // URDF robots are supported (UrdfSceneTest); an entry must be an object.
+  EXPECT_CONTAINS(errorOf(R"({"bodies": [], "urdf": ["robot.urdf"]})"),
+                  "urdf[0]: expected an object");
 }

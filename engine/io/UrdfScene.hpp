@@ -1,0 +1,65 @@
+#pragma once
+// URDF robots in scenes (docs/scene-format.md "urdf", docs/urdf.md "In a scene"): the JSON
+// scene's `urdf` section and a scene made of one URDF file on a floor (`coulomb run robot.urdf`).
+// Each robot becomes an ArticulationDesc (reduced coordinates) with its initial joint positions,
+// motors (position or velocity targets with an effort bound) and mimic couplings.
+#include <coulomb/engine/ArticulationDesc.hpp>
+#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/engine/io/UrdfLoader.hpp>
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace coulomb::engine::io {
+
+class JsonNode;
+
+/// A motor of a URDF scene, by joint name.
+struct UrdfMotorSpec {
+  JointMotorMode mode = JointMotorMode::Position;
+  double target = 0.0;
+  std::optional<double> maxEffort;  // nullopt: the joint's <limit effort>, else the scene default
+  double positionGain = 0.2;
+};
+
+/// One robot of a scene: what the JSON `urdf` entries hold.
+struct UrdfPlacement {
+  std::filesystem::path file;  // resolved (exists)
+  std::string name;            // articulation name (link proxies "name/link")
+  UrdfOptions options;         // base, pose, package path, fusing
+  /// Lift the robot so that its lowest collision shape rests `clearance` above z = 0 (the pose's
+  /// z is then ignored). Used for `coulomb run robot.urdf`; a JSON entry sets "on_floor".
+  std::optional<double> clearance;
+  std::map<std::string, double> q;  // initial joint positions by name (others 0)
+  std::map<std::string, UrdfMotorSpec> motors;
+  /// Position motors holding every 1-DOF joint without a motor at its initial position.
+  bool holdAllJoints = false;
+  double defaultMaxEffort = 100.0;  // [N m or N] when a joint gives no <limit effort>
+  bool mimicCouplings = true;       // URDF <mimic> as coupling rows
+  bool selfCollision = false;
+};
+
+/// Where a scene's `file` is looked for: the scene's folder, then each folder of the environment
+/// variable COULOMB_ROBOT_PATH (':'-separated), the path as written and then without its leading
+/// "../" parts. Throws CoulombError listing the candidates.
+std::filesystem::path resolveRobotFile(const std::string& file,
+                                       const std::filesystem::path& sceneDirectory,
+                                       const std::string& where);
+
+/// Loads the robot and builds its articulation. Errors name `where` (file, JSON path).
+ArticulationDesc placeUrdf(const UrdfPlacement& placement, const std::string& where);
+
+/// The `urdf` array of a JSON scene, entries in order.
+std::vector<ArticulationDesc> parseUrdfSection(const JsonNode& node,
+                                               const std::filesystem::path& sceneDirectory);
+
+/// A scene of one URDF file: a static floor (plane z = 0, friction 0.8) and the robot resting on
+/// it (fixed base: lowest shape on the floor; floating: dropped from 5 cm), joints held by
+/// position motors at their initial positions when `hold` is set.
+Scene urdfFileScene(const std::filesystem::path& file, UrdfBase base, bool hold,
+                    const std::vector<std::filesystem::path>& packagePath = {});
+
+}  // namespace coulomb::engine::io
