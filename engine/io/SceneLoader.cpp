@@ -1,7 +1,7 @@
 #include <coulomb/engine/io/JsonReader.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
-#include <coulomb/engine/io/UrdfScene.hpp>
 #include <coulomb/engine/io/SolverSection.hpp>
+#include <coulomb/engine/io/UrdfScene.hpp>
 
 #if __has_include(<coulomb/geometry/MeshLoader.hpp>)
 #include <coulomb/geometry/MeshLoader.hpp>

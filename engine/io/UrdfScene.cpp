@@ -192,7 +192,7 @@ ArticulationDesc placeUrdf(const UrdfPlacement& placement, const std::string& wh
   try {
     model = loadUrdfFile(placement.file, placement.options);
   } catch (const CoulombError& e) {
-    throw CoulombError(where + ": " + e.what());
+    throw CoulombError(where.empty() ? std::string(e.what()) : where + ": " + e.what());
   }
   ArticulationDesc desc = toArticulationDesc(model, placement.name);
   desc.selfCollision = placement.selfCollision;
@@ -272,7 +272,7 @@ Scene urdfFileScene(const std::filesystem::path& file, UrdfBase base, bool hold,
   placement.options.packagePath = packagePath;
   placement.clearance = base == UrdfBase::Floating ? 0.05 : 0.0;
   placement.holdAllJoints = hold;
-  scene.articulations.push_back(placeUrdf(placement, file.string()));
+  scene.articulations.push_back(placeUrdf(placement, ""));  // loader errors name the file
   return scene;
 }
 

@@ -143,9 +143,17 @@ void listScenes() {
 
 void registerSceneCommands(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
-  CLI::App* runCommand = app.add_subcommand("run", "Run a scene (built-in name or JSON file)");
-  runCommand->add_option("scene", options->scene, "Built-in scene name or path to a .json scene")
+  CLI::App* runCommand =
+      app.add_subcommand("run", "Run a scene (built-in name, JSON file or URDF robot)");
+  runCommand
+      ->add_option(
+          "scene", options->scene,
+          "Built-in scene name, path to a .json scene or a .urdf robot (placed on a floor)")
       ->required();
+  runCommand->add_flag("--floating", options->overrides.urdfFloating,
+                       "A .urdf robot gets a floating base (default: fixed)");
+  runCommand->add_flag("--limp", options->overrides.urdfLimp,
+                       "A .urdf robot's joints are not held by motors (default: held)");
   runCommand->add_option("--solver", options->overrides.solver,
                          "Contact solver of every island: auto, a name of `coulomb solvers`, "
                          "NAME! (no fallback) or a chain a,b,c (default: the scene's)");

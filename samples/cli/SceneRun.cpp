@@ -1,6 +1,7 @@
 #include "SceneRun.hpp"
 
 #include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/io/UrdfScene.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -14,7 +15,13 @@ namespace coulomb::cli {
 engine::io::Scene loadScene(const std::string& nameOrPath, const SceneOverrides& overrides) {
   engine::io::Scene scene;
   try {
-    scene = scenes::resolveScene(nameOrPath);
+    if (nameOrPath.ends_with(".urdf"))  // a robot on a floor (docs/urdf.md "In a scene")
+      scene = engine::io::urdfFileScene(
+          nameOrPath,
+          overrides.urdfFloating ? engine::io::UrdfBase::Floating : engine::io::UrdfBase::Fixed,
+          !overrides.urdfLimp);
+    else
+      scene = scenes::resolveScene(nameOrPath);
   } catch (const engine::CoulombError& e) {
     throw CommandError(e.what());
   }

@@ -32,7 +32,9 @@ engine::io::Scene loadBuiltinScene(std::string_view name) {
   if (found != scenes.end()) {
     std::string source = "built-in scene '";
     source.append(name).append("'");
-    return engine::io::parseScene(found->json, source);
+    // Paths in built-in scenes (URDF robots in samples/robots) resolve against the source tree's
+    // samples/scenes, then COULOMB_ROBOT_PATH (docs/urdf.md, "In a scene").
+    return engine::io::parseScene(found->json, source, COULOMB_BUILTIN_SCENE_DIR);
   }
   // Built with append: GCC 12 gives a false -Wrestrict on chained string_view concatenation.
   std::string message = "no built-in scene '";
