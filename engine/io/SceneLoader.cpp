@@ -1,3 +1,4 @@
+#include <coulomb/engine/io/JointJson.hpp>
 #include <coulomb/engine/io/JsonReader.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
 #include <coulomb/engine/io/SolverSection.hpp>
@@ -381,7 +382,7 @@ Scene parseScene(std::string_view text, const std::string& source,
   }
   const JsonNode root(document, source, "");
   root.allowOnly({"name", "description", "gravity", "time_step", "steps", "materials", "bodies",
-                  "joints", "solver", "urdf", "articulations"});
+                  "joints", "joint_stabilization", "solver", "urdf", "articulations"});
   Scene scene;
   scene.source = source;
   scene.name = root.string("name", std::filesystem::path(source).stem().string());
@@ -389,7 +390,6 @@ Scene parseScene(std::string_view text, const std::string& source,
   scene.settings.gravity = root.vector3("gravity", scene.settings.gravity);
   if (root.has("time_step")) scene.settings.timeStep = root.child("time_step").positiveNumber();
   if (root.has("steps")) scene.steps = root.child("steps").unsignedInteger();
-  checkReserved(root, "joints", "joints");
   if (root.has("solver")) parseSolverSection(root.child("solver"), scene.settings);
 
   Materials materials;
@@ -414,6 +414,15 @@ Scene parseScene(std::string_view text, const std::string& source,
     std::vector<ArticulationDesc> robots = parseUrdfSection(root.child("urdf"), baseDirectory);
     std::move(robots.begin(), robots.end(), std::back_inserter(scene.articulations));
   }
+  if (root.has("joint_stabilization"))
+    scene.settings.jointStabilization =
+        parseStabilization(root.child("joint_stabilization"), scene.settings.jointStabilization);
+  if (root.has("joints")) {  // after the bodies: joints name them
+    const JsonNode joints = root.child("joints");
+    for (std::size_t i = 0; i < joints.arraySize(); ++i)
+      scene.joints.push_back(
+          parseJoint(joints.element(i), scene.bodies, scene.settings.jointStabilization));
+  }
   return scene;
 }
 
@@ -427,9 +436,10 @@ Scene loadSceneFile(const std::filesystem::path& file) {
 
 World buildWorld(const Scene& scene) {
   World world(scene.settings);
+  std::vector<geometry::BodyId> ids;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     try {
-      world.createBody(scene.bodies[i]);
+      ids.push_back(world.createBody(scene.bodies[i]));
     } catch (const CoulombError& e) {
       // The World says "body 'name': <field> ..."; re-anchor it at the body's JSON path.
       std::string message = e.what();
@@ -449,6 +459,20 @@ World buildWorld(const Scene& scene) {
       world.createArticulation(scene.articulations[i]);
     } catch (const CoulombError& e) {
       throw CoulombError(scene.source + ": articulations[" + std::to_string(i) + "]: " + e.what());
+    }
+  }
+  for (std::size_t i = 0; i < scene.joints.size(); ++i) {
+    const SceneJoint& joint = scene.joints[i];
+    joints::JointDef def = joint.def;
+    const auto id = [&](int body) {
+      return body < 0 ? geometry::BodyId{} : ids[static_cast<std::size_t>(body)];
+    };
+    def.bodyA = id(joint.bodyA);
+    def.bodyB = id(joint.bodyB);
+    try {
+      world.createJoint(def);
+    } catch (const CoulombError& e) {
+      throw CoulombError(scene.source + ": joints[" + std::to_string(i) + "]: " + e.what());
     }
   }
   return world;

@@ -6,6 +6,7 @@
 #include <coulomb/engine/BodyDesc.hpp>
 #include <coulomb/engine/World.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
+#include <coulomb/joints/JointDef.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -15,6 +16,14 @@
 
 namespace coulomb::engine::io {
 
+/// A joint of the "joints" section: its ends as indices into Scene::bodies (-1 = the world) and
+/// the definition with frames in the bodies' reference frames (World::createJoint's convention).
+struct SceneJoint {
+  int bodyA = -1;
+  int bodyB = -1;
+  joints::JointDef def;
+};
+
 struct Scene {
   std::string name;         // "name" key, else the file stem
   std::string description;  // free text
@@ -23,6 +32,7 @@ struct Scene {
   std::uint64_t steps = 1000;
   std::vector<BodyDesc> bodies;
   std::vector<ArticulationDesc> articulations;  // created after the bodies, in file order
+  std::vector<SceneJoint> joints;               // created after the articulations, in file order
 };
 
 /// Reads and parses a scene file; mesh file paths are relative to the file's folder.
@@ -32,8 +42,9 @@ Scene loadSceneFile(const std::filesystem::path& file);
 Scene parseScene(std::string_view text, const std::string& source,
                  const std::filesystem::path& baseDirectory = {});
 
-/// A World holding the scene's bodies (in file order: body i gets slot i). Creation errors are
-/// reported as "<source>: bodies[i]...".
+/// A World holding the scene's bodies (in file order: body i gets slot i), articulations and joints
+/// (joint i gets JointId {i, 0}). Creation errors are reported as "<source>: bodies[i]..." or
+/// "<source>: joints[i]: ...".
 World buildWorld(const Scene& scene);
 
 }  // namespace coulomb::engine::io

@@ -165,8 +165,9 @@ TEST(SceneLoader, WorldErrorsAreAnchoredAtTheBody) {
 }
 
 TEST(SceneLoader, ReservedSectionsAreRefusedUntilSupported) {
+  // Joints are supported (SceneJointsTest): a joint without bodies is refused at its path.
   EXPECT_CONTAINS(errorOf(R"({"bodies": [], "joints": [{"type": "hinge"}]})"),
-                  "joints: joints are not supported yet");
+                  "joints[0]: at least one of body_a, body_b must be a body");
   // The solver section is supported (SceneSolverSectionTest); an unknown key in it is refused.
   EXPECT_CONTAINS(errorOf(R"({"bodies": [], "solver": {"nme": "pgs"}})"),
                   "solver.nme: unknown key 'nme'");
