@@ -42,6 +42,7 @@ struct StepReport {
   double time = 0.0;              // [s] simulated time at the end of the step
   std::size_t dynamicBodies = 0;  // bodies integrated under forces
   std::size_t kinematicBodies = 0;
+  std::size_t sleepingBodies = 0;  // dynamic bodies asleep at the end of the step (engine/Sleep)
   geometry::CollisionStats collision;                         // pairs, manifolds, points
   std::vector<geometry::CollisionFailure> collisionFailures;  // pairs skipped this step
   std::vector<IslandReport> islands;

@@ -193,6 +193,7 @@ void World::setVelocity(BodyId id, const Eigen::Vector3d& linear, const Eigen::V
     throw CoulombError("setVelocity: velocities must be finite");
   if (state_.motionTypes[i] == geometry::MotionType::Static)
     throw CoulombError("setVelocity: body '" + names_[i] + "' is static");
+  sleep_.wake(i, state_);
   state_.linearVelocities[i] = linear;
   state_.angularVelocities[i] = angular;
 }
@@ -200,6 +201,7 @@ void World::setVelocity(BodyId id, const Eigen::Vector3d& linear, const Eigen::V
 void World::applyForce(BodyId id, const Eigen::Vector3d& force) {
   const std::size_t i = slotOf(id);
   if (!force.allFinite()) throw CoulombError("applyForce: force must be finite");
+  sleep_.wake(i, state_);
   state_.forces[i] += force;
 }
 
@@ -210,12 +212,14 @@ void World::applyForceAtPoint(BodyId id, const Eigen::Vector3d& force,
     throw CoulombError("applyForceAtPoint: force and point must be finite");
   state_.forces[i] += force;
   state_.torques[i] += (worldPoint - state_.poses[i].position).cross(force);
+  sleep_.wake(i, state_);
 }
 
 void World::applyTorque(BodyId id, const Eigen::Vector3d& torque) {
   const std::size_t i = slotOf(id);
   if (!torque.allFinite()) throw CoulombError("applyTorque: torque must be finite");
   state_.torques[i] += torque;
+  sleep_.wake(i, state_);
 }
 
 void World::setGravity(const Eigen::Vector3d& gravity) {
@@ -247,6 +251,7 @@ StepReport World::step(double h) {
     return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index) ||
            articulations_.isLink(a.body.index) || articulations_.isLink(b.body.index);
   });
+  sleep_.wakeTouched(collision_.cache().manifolds(), state_, settings_.gravity, h);  // touched
   std::vector<ConstraintEdge> edges = constraintEdges();
   articulations_.appendConstraintEdges(edges, h);  // tree joint limits and loop closures
   articulations_.mapEdges(edges);                  // a tree is one unit (its root link's proxy)
@@ -260,11 +265,13 @@ StepReport World::step(double h) {
   articulations_.integratePositions(h, state_);   // q+ from qd+; link proxies follow
   correctPenetrations(h, rows, sources, report);  // split impulse
   joints_.finishStep(state_, h, report.joints);   // reactions, breakage, drift
+  sleep_.update(islands, state_, settings_.sleep, h);  // slow islands fall asleep
 
   state_.clearForces();
   articulations_.clearForces();
   report.collision = collision_.diagnostics().stats;
   report.collisionFailures = collision_.diagnostics().failures;
+  report.sleepingBodies = sleep_.sleepingBodies(state_);
   ++stepCount_;
   time_ += h;
   report.time = time_;

@@ -7,6 +7,7 @@
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/engine/JointStage.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
+#include <coulomb/engine/Sleep.hpp>
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
@@ -137,6 +138,7 @@ class World {
   std::vector<std::string> solverOverrides_;  // per slot; "" = settings_.solver
   geometry::CollisionPipeline collision_;
   IslandBuilder islandBuilder_;
+  Sleep sleep_;
   ProblemAssembler assembler_;
   JointStage joints_;
   ArticulationStage articulations_;

@@ -32,6 +32,8 @@ std::optional<std::string> WorldSettings::validate() const {
         << ")";
   } else if (auto bad = jointStabilization.validate()) {
     out << "joint stabilization: " << *bad;
+  } else if (auto badSleep = sleep.validate()) {
+    out << *badSleep;
   } else {
     return std::nullopt;
   }

@@ -1,6 +1,7 @@
 #pragma once
 // Every tunable of a World, with its unit, default and the reason for the default.
 #include <coulomb/engine/ContactSettings.hpp>
+#include <coulomb/engine/Sleep.hpp>
 #include <coulomb/geometry/CollisionPipeline.hpp>
 #include <coulomb/joints/Stabilization.hpp>
 #include <coulomb/solvers/SolverOptions.hpp>
@@ -36,6 +37,8 @@ struct WorldSettings {
   ContactSettings contact;
   /// Speculative margin and contact-matching distances of the collision layer.
   geometry::CollisionSettings collision;
+  /// Islands at rest stop being simulated until touched (engine/Sleep.hpp). Default off.
+  SleepSettings sleep;
   /// How joint drift is removed (joints/Stabilization.hpp; docs/tuning.md compares the policies
   /// with figures). A joint's own JointDef::stabilization overrides it.
   joints::Stabilization jointStabilization;

@@ -33,6 +33,7 @@ void BodyState::assign(std::size_t index, MotionType type, const Pose& pose,
     principalFrames.resize(n, Eigen::Quaterniond::Identity());
     motionTypes.resize(n, MotionType::Static);
     alive.resize(n, 0);
+    asleep.resize(n, 0);
     forces.resize(n, Eigen::Vector3d::Zero());
     torques.resize(n, Eigen::Vector3d::Zero());
   }
@@ -41,6 +42,7 @@ void BodyState::assign(std::size_t index, MotionType type, const Pose& pose,
   poses[index] = normalised;
   motionTypes[index] = type;
   alive[index] = 1;
+  asleep[index] = 0;
   forces[index].setZero();
   torques[index].setZero();
   const bool dynamic = type == MotionType::Dynamic;

@@ -31,12 +31,14 @@ struct BodyState {
   std::vector<Eigen::Quaterniond> principalFrames;  // principal axes in the body frame
   std::vector<MotionType> motionTypes;
   std::vector<std::uint8_t> alive;       // 0 for a removed body's free slot
+  std::vector<std::uint8_t> asleep;      // 1: a dynamic body put to sleep (engine/Sleep): at rest,
+                                         // not integrated, not solved, like a static body
   std::vector<Eigen::Vector3d> forces;   // [N] at the COM, world; cleared every step
   std::vector<Eigen::Vector3d> torques;  // [N m] world; cleared every step
 
   [[nodiscard]] std::size_t size() const { return poses.size(); }
   [[nodiscard]] bool isDynamic(std::size_t i) const {
-    return alive[i] != 0 && motionTypes[i] == MotionType::Dynamic;
+    return alive[i] != 0 && motionTypes[i] == MotionType::Dynamic && asleep[i] == 0;
   }
 
   /// Appends a slot (or reuses slot `index` when index < size()) with the given values.

@@ -7,7 +7,8 @@ namespace coulomb::integrators {
 void integratePositions(geometry::BodyState& state, double h) {
   using geometry::MotionType;
   for (std::size_t i = 0; i < state.size(); ++i) {
-    if (state.alive[i] == 0 || state.motionTypes[i] == MotionType::Static) continue;
+    if (state.alive[i] == 0 || state.motionTypes[i] == MotionType::Static || state.asleep[i] != 0)
+      continue;
     geometry::Pose& pose = state.poses[i];
     pose.position += h * state.linearVelocities[i];
     if (state.motionTypes[i] == MotionType::Kinematic) {

@@ -382,7 +382,7 @@ Scene parseScene(std::string_view text, const std::string& source,
   }
   const JsonNode root(document, source, "");
   root.allowOnly({"name", "description", "gravity", "time_step", "steps", "materials", "bodies",
-                  "joints", "joint_stabilization", "solver", "urdf", "articulations"});
+                  "joints", "joint_stabilization", "solver", "sleep", "urdf", "articulations"});
   Scene scene;
   scene.source = source;
   scene.name = root.string("name", std::filesystem::path(source).stem().string());
@@ -391,6 +391,7 @@ Scene parseScene(std::string_view text, const std::string& source,
   if (root.has("time_step")) scene.settings.timeStep = root.child("time_step").positiveNumber();
   if (root.has("steps")) scene.steps = root.child("steps").unsignedInteger();
   if (root.has("solver")) parseSolverSection(root.child("solver"), scene.settings);
+  if (root.has("sleep")) parseSleepSection(root.child("sleep"), scene.settings.sleep);
 
   Materials materials;
   if (root.has("materials")) {

@@ -92,4 +92,12 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
   if (node.has("penetration")) parsePenetration(node.child("penetration"), contact.penetration);
 }
 
+void parseSleepSection(const JsonNode& node, SleepSettings& sleep) {
+  node.allowOnly({"enabled", "linear_speed", "angular_speed", "time"});
+  if (node.has("enabled")) sleep.enabled = parseBool(node.child("enabled"));
+  if (node.has("linear_speed")) sleep.linearSpeed = nonNegative(node.child("linear_speed"));
+  if (node.has("angular_speed")) sleep.angularSpeed = nonNegative(node.child("angular_speed"));
+  if (node.has("time")) sleep.timeToSleep = nonNegative(node.child("time"));
+}
+
 }  // namespace coulomb::engine::io

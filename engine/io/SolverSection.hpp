@@ -17,4 +17,7 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings);
 /// suggesting the nearest built-in name for a typo; returns it unchanged.
 std::string parseSolverRequest(const JsonNode& node);
 
+/// The top-level "sleep" section: enabled, linear_speed [m/s], angular_speed [rad/s], time [s].
+void parseSleepSection(const JsonNode& node, SleepSettings& sleep);
+
 }  // namespace coulomb::engine::io
