@@ -86,6 +86,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   const fs::path folder = argv[1];
+  if (!fs::is_directory(folder)) {
+    std::cerr << "SolverCorpusBench: '" << folder.string()
+              << "' is not a folder of .fc3d problems (usage: SolverCorpusBench FOLDER ...)\n";
+    return 2;
+  }
   std::vector<std::string> solvers;
   double tol = 1e-8, timeLimit = 60;
   int repeats = 5, maxIterations = 0;

@@ -21,6 +21,14 @@ SolverRegistry SolverRegistry::builtIn() {
          "Alart-Curnier nonsmooth Newton, Goldstein-Price search, regularized sparse LU "
          "(SOLVERS.md 5)",
          [] { return std::make_unique<AcNewtonSolver>(); }});
+  r.add({"prox",
+         "proximal-point outer loop around the Alart-Curnier Newton: FC(W + s I, q - s r_k), "
+         "for singular W of redundant contacts (SOLVERS.md 5.9)",
+         [] {
+           AcNewtonOptions options;
+           options.proximalFromStart = true;
+           return std::make_unique<AcNewtonSolver>(options);
+         }});
   r.add({"fb_newton",
          "Fischer-Burmeister nonsmooth Newton for second-order cones, cancellation-free "
          "eigenvalue, Armijo search, shared Newton loop (SOLVERS.md 6)",

@@ -84,6 +84,10 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
     }
   }
   const AlartCurnierFunction function(options_.radius);
+  if (options_.proximalFromStart) {
+    proximalLoop(p, function, options_, context, budget, r, report);
+    return;
+  }
   runNonsmoothNewton(p, function, options_.newton, context, budget, r, report);
   if (report.maxRegularization > 0) {
     std::ostringstream msg;

@@ -24,6 +24,9 @@ struct AcNewtonOptions {
   // r_{k+1} solves FC(W + s_k I, q - s_k r_k) by the same Newton. Default on: it solved the
   // Kaplas tower in the prototypes where plain Newton (with (5.8)) did not.
   bool proximalOnStall = true;
+  // Run the proximal-point loop (5.9) from the start instead of after a stall: the `prox` entry of
+  // the registry (Siconos' PROX). Default off: on well-posed problems plain Newton is faster.
+  bool proximalFromStart = false;
   // [-] first proximal shift as a multiple of mean_i W_ii (SOLVERS.md (5.9), scale-aware
   // version of Siconos' absolute 1e4).
   double proximalInitialShift = 1.0;
@@ -34,7 +37,9 @@ struct AcNewtonOptions {
 class AcNewtonSolver final : public ContactSolver {
  public:
   explicit AcNewtonSolver(AcNewtonOptions options = {}) : options_(options) {}
-  [[nodiscard]] std::string name() const override { return "ac_newton"; }
+  [[nodiscard]] std::string name() const override {
+    return options_.proximalFromStart ? "prox" : "ac_newton";
+  }
   [[nodiscard]] const AcNewtonOptions& options() const { return options_; }
   void solvePrepared(const PreparedProblem& problem, const SolveContext& context,
                      Eigen::VectorXd& r, SolverReport& report) const override;
