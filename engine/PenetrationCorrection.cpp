@@ -12,14 +12,61 @@ double baumgarteBias(const PenetrationSettings& settings, double depth, double h
   return -settings.beta * std::max(depth - settings.slop, 0.0) / h;
 }
 
+solvers::BlockSparseMatrix normalNormalBlock(const VelocityProblemNormals& normals) {
+  const auto contacts = static_cast<int>(normals.normalRows.size());
+  std::vector<int> rowStart{0}, columns;
+  std::vector<double> values;
+  rowStart.reserve(contacts + 1);
+  if (const Eigen::MatrixXd* dense = normals.W.denseMatrix()) {
+    for (int k = 0; k < contacts; ++k) {
+      for (int j = 0; j < contacts; ++j) {
+        const double w = (*dense)(normals.normalRows[k], normals.normalRows[j]);
+        if (w == 0.0 && j != k) continue;
+        columns.push_back(j);
+        values.push_back(w);
+      }
+      rowStart.push_back(static_cast<int>(columns.size()));
+    }
+  } else {
+    const solvers::BlockSparseMatrix& W = *normals.W.blockSparseMatrix();
+    // Solver block of W <-> contact index, for the blocks that start at a contact's normal row.
+    std::vector<int> contactOfBlock(W.blockCount(), -1), blockOfContact(contacts);
+    int b = 0;
+    for (int k = 0; k < contacts; ++k) {  // normal rows ascend with k
+      while (b < W.blockCount() && W.blockOffset(b) < normals.normalRows[k]) ++b;
+      blockOfContact[k] = b;
+      contactOfBlock.at(b) = k;
+    }
+    for (int k = 0; k < contacts; ++k) {
+      for (int e = W.rowBegin(blockOfContact[k]); e < W.rowEnd(blockOfContact[k]); ++e) {
+        const int j = contactOfBlock[W.blockColumn(e)];
+        if (j < 0) continue;
+        columns.push_back(j);
+        values.push_back(W.blockValues(e)[0]);  // (normal, normal) entry of the 3x3 block
+      }
+      rowStart.push_back(static_cast<int>(columns.size()));
+    }
+  }
+  return solvers::BlockSparseMatrix::fromBlockCsr(
+      std::vector<int>(contacts, 1), std::move(rowStart), std::move(columns), std::move(values));
+}
+
 std::optional<solvers::SolverReport> correctPenetration(
     const joints::RowSet& contactRows, const std::vector<ContactRowSource>& sources,
     const PenetrationSettings& settings, double h, geometry::BodyState& state,
-    ArticulationStage* articulations) {
+    ArticulationStage* articulations, const VelocityProblemNormals* velocityProblem) {
   if (settings.method != PenetrationMethod::SplitImpulse) return std::nullopt;
+  // Nothing beyond the slop: nothing to build (the common case of a resting stack).
+  auto pseudoVelocityTarget = [&](const ContactRowSource& source) {
+    const double excess = source.depth - settings.slop;
+    return excess > 0.0 ? -settings.beta * excess / h : 0.0;
+  };
+  const bool anyPenetration = std::any_of(
+      sources.begin(), sources.end(), [&](const auto& s) { return pseudoVelocityTarget(s) < 0.0; });
+  if (!anyPenetration) return std::nullopt;
   joints::RowSet normals;
+  normals.blocks.reserve(contactRows.blocks.size());
   for (std::size_t k = 0; k < contactRows.blocks.size(); ++k) {
-    const double excess = sources[k].depth - settings.slop;
     const joints::RowBlock& block = contactRows.blocks[k];
     joints::RowBlock normal;
     normal.kind = joints::RowKind::Unilateral;
@@ -28,14 +75,22 @@ std::optional<solvers::SolverReport> correctPenetration(
     normal.jacobianA = block.jacobianA.topRows(1);
     normal.jacobianB = block.jacobianB.topRows(1);
     // Target separation speed for the pseudo-velocity; 0 keeps touching rows non-penetrating.
-    normal.bias = joints::RowVector::Constant(1, excess > 0.0 ? -settings.beta * excess / h : 0.0);
+    normal.bias = joints::RowVector::Constant(1, pseudoVelocityTarget(sources[k]));
     normals.blocks.push_back(std::move(normal));
   }
-  bool anyPenetration = false;
-  for (const auto& b : normals.blocks) anyPenetration = anyPenetration || b.bias[0] < 0.0;
-  if (!anyPenetration) return std::nullopt;
 
-  AssembledProblem assembled = ProblemAssembler().assemble(normals, state, articulations);
+  AssembledProblem assembled;
+  if (velocityProblem != nullptr && velocityProblem->usable(normals.blocks.size())) {
+    const auto contacts = static_cast<int>(normals.blocks.size());
+    assembled.problem.W =
+        solvers::DelassusOperator::blockSparse(normalNormalBlock(*velocityProblem));
+    assembled.problem.blocks.assign(contacts, solvers::ConstraintBlock::unilateral());
+    assembled.problem.q.resize(contacts);
+    assembled.slots.resize(contacts);
+    for (int k = 0; k < contacts; ++k) assembled.slots[k] = {k, 1};
+  } else {
+    assembled = ProblemAssembler().assemble(normals, state, articulations);
+  }
   // The pseudo problem starts from zero pseudo-velocity: q is the bias alone, not J v.
   for (std::size_t k = 0; k < normals.blocks.size(); ++k)
     assembled.problem.q[assembled.slots[k].offset] = normals.blocks[k].bias[0];

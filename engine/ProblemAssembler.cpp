@@ -3,13 +3,23 @@
 
 #include <Eigen/Geometry>
 
-#include <map>
+#include <algorithm>
+#include <compare>
 #include <utility>
 
 namespace coulomb::engine {
 namespace {
 
 using Matrix6k = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
+using BlockMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, 6, 6>;
+
+// One side of a row block on a dynamic body. Sorted: grouped by body, block order inside.
+struct Touch {
+  std::uint32_t body = 0;
+  int block = 0;
+  bool sideB = false;
+  auto operator<=>(const Touch&) const = default;
+};
 
 bool carriesUnknowns(const geometry::BodyState& state, const geometry::BodyId& body) {
   return body.valid() && body.index < state.size() && state.isDynamic(body.index);
@@ -43,6 +53,59 @@ void appendSolverBlocks(const joints::RowBlock& block, std::vector<solvers::Cons
   }
 }
 
+// W in block-CSR form over the solver blocks (a Contact3D row block is one 3-row solver block,
+// any other row its own 1-row block), filled row block by row block in increasing order.
+class SparseRowsBuilder {
+ public:
+  SparseRowsBuilder(const joints::RowSet& rows, int blockCount) : rows_(rows) {
+    firstSolverBlock_.resize(blockCount);
+    for (int k = 0; k < blockCount; ++k) {
+      firstSolverBlock_[k] = static_cast<int>(blockSizes_.size());
+      if (isContact(k))
+        blockSizes_.push_back(3);
+      else
+        blockSizes_.insert(blockSizes_.end(), rows.blocks[k].rows(), 1);
+    }
+    rowStart_.reserve(blockSizes_.size() + 1);
+    rowStart_.push_back(0);
+  }
+
+  // The nonzero blocks (k, columns[c]) = strip[c] of row block k, columns ascending.
+  void addRowBlock(int k, const std::vector<int>& columns, const std::vector<BlockMatrix>& strip) {
+    const bool rowIs3 = isContact(k);
+    const int rowParts = rowIs3 ? 1 : rows_.blocks[k].rows();
+    const int height = rowIs3 ? 3 : 1;
+    for (int a = 0; a < rowParts; ++a) {
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        const int j = columns[c];
+        const bool colIs3 = isContact(j);
+        const int colParts = colIs3 ? 1 : rows_.blocks[j].rows();
+        const int width = colIs3 ? 3 : 1;
+        for (int part = 0; part < colParts; ++part) {
+          blockColumns_.push_back(firstSolverBlock_[j] + part);
+          for (int i = 0; i < height; ++i)
+            for (int w = 0; w < width; ++w)
+              values_.push_back(strip[c](a * height + i, part * width + w));
+        }
+      }
+      rowStart_.push_back(static_cast<int>(blockColumns_.size()));
+    }
+  }
+
+  solvers::BlockSparseMatrix build() {
+    return solvers::BlockSparseMatrix::fromBlockCsr(std::move(blockSizes_), std::move(rowStart_),
+                                                    std::move(blockColumns_), std::move(values_));
+  }
+
+ private:
+  [[nodiscard]] bool isContact(int k) const {
+    return rows_.blocks[k].kind == joints::RowKind::Contact3D;
+  }
+  const joints::RowSet& rows_;
+  std::vector<int> firstSolverBlock_, blockSizes_, rowStart_, blockColumns_;
+  std::vector<double> values_;
+};
+
 }  // namespace
 
 AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
@@ -52,6 +115,7 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
   const auto blockCount = static_cast<int>(rows.blocks.size());
   out.slots.resize(blockCount);
   std::vector<solvers::ConstraintBlock> solverBlocks;
+  solverBlocks.reserve(blockCount);
   int size = 0;
   for (int k = 0; k < blockCount; ++k) {
     out.slots[k] = {size, rows.blocks[k].rows()};
@@ -59,92 +123,94 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
     appendSolverBlocks(rows.blocks[k], solverBlocks);
   }
 
-  // Which (block, side) touches each dynamic body, in block order (deterministic).
-  struct Touch {
-    int block;
-    bool sideB;
-  };
-  std::map<std::uint32_t, std::vector<Touch>> touches;
+  // q = J v* + bias (kinematic bodies contribute their prescribed velocity, static ones zero),
+  // and the (block, side) pairs on dynamic bodies with their M_b^-1 J^T.
   Eigen::VectorXd q(size);
+  std::vector<Touch> touches;
+  touches.reserve(2 * blockCount);
+  std::vector<Matrix6k> minvJt(2 * blockCount);
   for (int k = 0; k < blockCount; ++k) {
     const joints::RowBlock& block = rows.blocks[k];
-    Eigen::VectorXd u = block.bias;
+    joints::RowVector u = block.bias;
     for (const bool sideB : {false, true}) {
       const geometry::BodyId& body = sideB ? block.bodyB : block.bodyA;
       if (!body.valid() || body.index >= state.size()) continue;
       const joints::RowJacobian& jac = sideB ? block.jacobianB : block.jacobianA;
-      // q = J v* (kinematic bodies contribute their prescribed velocity, static ones zero).
       u += jac.leftCols<3>() * state.linearVelocities[body.index] +
            jac.rightCols<3>() * state.angularVelocities[body.index];
-      if (carriesUnknowns(state, body)) touches[body.index].push_back({k, sideB});
+      if (!carriesUnknowns(state, body)) continue;
+      touches.push_back({body.index, k, sideB});
+      minvJt[2 * k + (sideB ? 1 : 0)] = inverseMassTimesJacobianT(state, body.index, jac);
     }
     q.segment(out.slots[k].offset, out.slots[k].rows) = u;
   }
-
-  // W_kl = sum over shared bodies b of J_k,b M_b^-1 J_l,b^T, accumulated per pair of row blocks.
-  std::map<std::pair<int, int>, Eigen::MatrixXd> pairBlocks;
-  for (const auto& [body, list] : touches) {
-    out.degreesOfFreedom += 6;
-    std::vector<Matrix6k> minvJt;
-    minvJt.reserve(list.size());
-    for (const Touch& t : list) {
-      const joints::RowBlock& b = rows.blocks[t.block];
-      minvJt.push_back(inverseMassTimesJacobianT(state, body, t.sideB ? b.jacobianB : b.jacobianA));
-    }
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const joints::RowBlock& bi = rows.blocks[list[i].block];
-      const joints::RowJacobian& ji = list[i].sideB ? bi.jacobianB : bi.jacobianA;
-      for (std::size_t j = 0; j < list.size(); ++j) {
-        Eigen::MatrixXd contribution = ji * minvJt[j];
-        auto [it, inserted] =
-            pairBlocks.try_emplace({list[i].block, list[j].block}, std::move(contribution));
-        if (!inserted) it->second += ji * minvJt[j];
-      }
-    }
+  // Grouped by body, in block order inside a body (deterministic).
+  std::sort(touches.begin(), touches.end());
+  std::vector<int> groupOfSide(2 * blockCount, -1);  // (block, side) -> its body's group
+  std::vector<int> groupStart;
+  for (int t = 0; t < static_cast<int>(touches.size()); ++t) {
+    if (t == 0 || touches[t].body != touches[t - 1].body) groupStart.push_back(t);
+    groupOfSide[2 * touches[t].block + (touches[t].sideB ? 1 : 0)] =
+        static_cast<int>(groupStart.size()) - 1;
   }
+  groupStart.push_back(static_cast<int>(touches.size()));
+  out.degreesOfFreedom = 6 * (static_cast<int>(groupStart.size()) - 1);
 
   // Rows on articulation links: the trees' joint-space part (their proxies carry no unknowns).
+  DelassusBlockMap treeBlocks;
   if (articulations != nullptr)
-    out.degreesOfFreedom += articulations->addDelassusBlocks(rows, state, pairBlocks);
+    out.degreesOfFreedom += articulations->addDelassusBlocks(rows, state, treeBlocks);
 
-  if (size <= settings_.denseRowLimit) {
-    Eigen::MatrixXd W = Eigen::MatrixXd::Zero(size, size);
-    for (const auto& [key, value] : pairBlocks)
-      W.block(out.slots[key.first].offset, out.slots[key.second].offset, value.rows(),
-              value.cols()) += value;
-    out.problem.W = solvers::DelassusOperator::dense(std::move(W));
-  } else {
-    // Solver blocks: a Contact3D row block is one 3-row block, any other row is its own block.
-    std::vector<int> firstSolverBlock(blockCount);
-    std::vector<int> blockSizes;
-    for (int k = 0; k < blockCount; ++k) {
-      firstSolverBlock[k] = static_cast<int>(blockSizes.size());
-      if (rows.blocks[k].kind == joints::RowKind::Contact3D)
-        blockSizes.push_back(3);
-      else
-        blockSizes.insert(blockSizes.end(), rows.blocks[k].rows(), 1);
+  // W_kj = sum over the bodies b shared by blocks k and j (in increasing body index) of
+  // J_k,b M_b^-1 J_j,b^T, plus the trees' part; built row block by row block, columns ascending.
+  const bool dense = size <= settings_.denseRowLimit;
+  Eigen::MatrixXd denseW;
+  if (dense) denseW.setZero(size, size);
+  SparseRowsBuilder sparse(rows, blockCount);
+  std::vector<int> columns;
+  std::vector<BlockMatrix> strip;
+  auto tree = treeBlocks.begin();
+  for (int k = 0; k < blockCount; ++k) {
+    const joints::RowBlock& bk = rows.blocks[k];
+    // The body groups of block k, in increasing body index (the summation order).
+    int groups[2] = {groupOfSide[2 * k], groupOfSide[2 * k + 1]};
+    bool sidesOfGroup[2] = {false, true};
+    if (groups[0] >= 0 && groups[1] >= 0 && groups[1] < groups[0]) {
+      std::swap(groups[0], groups[1]);
+      std::swap(sidesOfGroup[0], sidesOfGroup[1]);
     }
-    std::vector<solvers::MatrixBlockEntry> entries;
-    for (const auto& [key, value] : pairBlocks) {
-      const bool rowIs3 = rows.blocks[key.first].kind == joints::RowKind::Contact3D;
-      const bool colIs3 = rows.blocks[key.second].kind == joints::RowKind::Contact3D;
-      const int rowParts = rowIs3 ? 1 : static_cast<int>(value.rows());
-      const int colParts = colIs3 ? 1 : static_cast<int>(value.cols());
-      for (int a = 0; a < rowParts; ++a)
-        for (int c = 0; c < colParts; ++c) {
-          const int h = rowIs3 ? 3 : 1, w = colIs3 ? 3 : 1;
-          solvers::MatrixBlockEntry entry;
-          entry.row = firstSolverBlock[key.first] + a;
-          entry.col = firstSolverBlock[key.second] + c;
-          entry.values.reserve(h * w);
-          for (int i = 0; i < h; ++i)
-            for (int j = 0; j < w; ++j) entry.values.push_back(value(a * h + i, c * w + j));
-          entries.push_back(std::move(entry));
-        }
+    columns.clear();
+    for (int g = 0; g < 2; ++g)
+      if (groups[g] >= 0)
+        for (int t = groupStart[groups[g]]; t < groupStart[groups[g] + 1]; ++t)
+          columns.push_back(touches[t].block);
+    const auto treeBegin = tree;
+    for (; tree != treeBlocks.end() && tree->first.first == k; ++tree)
+      columns.push_back(tree->first.second);
+    std::sort(columns.begin(), columns.end());
+    columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+
+    strip.resize(columns.size());
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const int j = columns[c];
+      BlockMatrix& value = strip[c];
+      value.setZero(bk.rows(), rows.blocks[j].rows());
+      for (int g = 0; g < 2; ++g) {
+        if (groups[g] < 0) continue;
+        const joints::RowJacobian& jk = sidesOfGroup[g] ? bk.jacobianB : bk.jacobianA;
+        for (const int side : {0, 1})
+          if (groupOfSide[2 * j + side] == groups[g]) value.noalias() += jk * minvJt[2 * j + side];
+      }
+      for (auto it = treeBegin; it != tree; ++it)
+        if (it->first.second == j) value += it->second;
+      if (dense)
+        denseW.block(out.slots[k].offset, out.slots[j].offset, value.rows(), value.cols()) = value;
     }
-    out.problem.W = solvers::DelassusOperator::blockSparse(
-        solvers::BlockSparseMatrix(std::move(blockSizes), std::move(entries)));
+    if (!dense) sparse.addRowBlock(k, columns, strip);
   }
+
+  out.problem.W = dense ? solvers::DelassusOperator::dense(std::move(denseW))
+                        : solvers::DelassusOperator::blockSparse(sparse.build());
   out.problem.q = std::move(q);
   out.problem.blocks = std::move(solverBlocks);
 

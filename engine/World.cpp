@@ -258,14 +258,15 @@ StepReport World::step(double h) {
   const std::vector<Island> islands = islandBuilder_.build(dynamicMask(), edges);
   std::vector<joints::RowSet> rows(islands.size());
   std::vector<std::vector<ContactRowSource>> sources(islands.size());
-  for (std::size_t k = 0; k < islands.size(); ++k)  // v* -> v+
-    report.islands.push_back(solveIsland(islands[k], h, rows[k], sources[k]));
+  std::vector<VelocityProblemNormals> normals(islands.size());  // W_NN for the split impulse
+  for (std::size_t k = 0; k < islands.size(); ++k)              // v* -> v+
+    report.islands.push_back(solveIsland(islands[k], h, rows[k], sources[k], normals[k]));
   joints_.correctDrift(state_, settings_.jointStabilization, h, report.joints);  // predicted state
   integrators::integratePositions(state_, h);                                    // x+ from v+
-  articulations_.integratePositions(h, state_);   // q+ from qd+; link proxies follow
-  correctPenetrations(h, rows, sources, report);  // split impulse
-  joints_.finishStep(state_, h, report.joints);   // reactions, breakage, drift
-  sleep_.update(islands, state_, settings_.sleep, h);  // slow islands fall asleep
+  articulations_.integratePositions(h, state_);            // q+ from qd+; link proxies follow
+  correctPenetrations(h, rows, sources, normals, report);  // split impulse
+  joints_.finishStep(state_, h, report.joints);            // reactions, breakage, drift
+  sleep_.update(islands, state_, settings_.sleep, h);      // slow islands fall asleep
 
   state_.clearForces();
   articulations_.clearForces();
@@ -281,7 +282,8 @@ StepReport World::step(double h) {
 }
 
 IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& rows,
-                                std::vector<ContactRowSource>& sources) {
+                                std::vector<ContactRowSource>& sources,
+                                VelocityProblemNormals& normals) {
   auto& manifolds = collision_.cache().manifolds();
   const Island bodyPart = articulations_.withoutTreeConstraints(island);
   joints::RowSet all = joints_.emitRows(bodyPart, state_, settings_.jointStabilization, h);
@@ -294,6 +296,10 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
   AssembledProblem assembled =
       assembler_.assemble(all, state_, &articulations_);  // W = J M^-1 J^T, q = J v*
   if (problemObserver_) problemObserver_(island.id, assembled.problem);
+  normals.W = assembled.problem.W;  // shared storage, no copy
+  normals.normalRows.clear();
+  for (std::size_t k = jointBlocks; k < jointBlocks + rows.blocks.size(); ++k)
+    normals.normalRows.push_back(assembled.slots[k].offset);
   const std::string& override = solverOverrides_[island.bodies.front()];
   const solvers::SolvePlan plan = solvers::SolverChooser().choose(
       assembled.problem, {assembled.degreesOfFreedom},
@@ -321,11 +327,12 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
 
 void World::correctPenetrations(double h, std::vector<joints::RowSet>& rows,
                                 std::vector<std::vector<ContactRowSource>>& sources,
+                                const std::vector<VelocityProblemNormals>& normals,
                                 StepReport& report) {
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto started = std::chrono::steady_clock::now();
     correctPenetration(rows[k], sources[k], settings_.contact.penetration, h, state_,
-                       &articulations_);
+                       &articulations_, &normals[k]);
     report.islands[k].penetrationSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }

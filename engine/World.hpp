@@ -6,6 +6,7 @@
 #include <coulomb/engine/ContactRowsEmitter.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/engine/JointStage.hpp>
+#include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/Sleep.hpp>
 #include <coulomb/engine/StepReport.hpp>
@@ -119,12 +120,13 @@ class World {
  private:
   /// The per-island stages of step(): rows, assembly, solver plan, solve, impulses, warm starts.
   IslandReport solveIsland(const Island& island, double h, joints::RowSet& rows,
-                           std::vector<ContactRowSource>& sources);
+                           std::vector<ContactRowSource>& sources, VelocityProblemNormals& normals);
   [[nodiscard]] std::vector<ConstraintEdge> contactEdges() const;
   [[nodiscard]] std::vector<ConstraintEdge> constraintEdges();  // contacts, then joints
   [[nodiscard]] std::vector<std::uint8_t> dynamicMask() const;
   void correctPenetrations(double h, std::vector<joints::RowSet>& rows,
-                           std::vector<std::vector<ContactRowSource>>& sources, StepReport& report);
+                           std::vector<std::vector<ContactRowSource>>& sources,
+                           const std::vector<VelocityProblemNormals>& normals, StepReport& report);
   std::size_t slotOf(geometry::BodyId id) const;  // throws for a stale id
 
   WorldSettings settings_;

@@ -31,7 +31,13 @@ struct WorldSettings {
   std::string solver = "auto";
   /// Common solver options per island. Default tolerance 1e-6 on the common relative residual
   /// (far below what changes a trajectory visibly, and reached in a few warm-started sweeps on
-  /// stacks); 0 iterations = each solver's own default; no time limit.
+  /// stacks); at most 200 iterations per attempt; no time limit. 200 is ac_newton's and
+  /// fb_newton's own cap, so it only shortens Gauss-Seidel (pgs, bgs: 10000 sweeps otherwise)
+  /// and staggered (1000 outer steps): a cold-started stack (first step of a resting pyramid)
+  /// needs thousands of sweeps to reach 1e-6, which cost seconds per step on 200+ boxes. Capped
+  /// attempts say "max_iterations" and the plan's fallbacks continue from their best iterate;
+  /// the warm start carries the rest into the next step (docs/benchmarks.md, "Contact step
+  /// performance"). 0 = each solver's own default.
   solvers::SolverOptions solverOptions = defaultSimulationSolverOptions();
   /// Restitution, speculative gaps and penetration correction (docs/tuning.md).
   ContactSettings contact;
@@ -46,7 +52,7 @@ struct WorldSettings {
   static solvers::SolverOptions defaultSimulationSolverOptions() {
     solvers::SolverOptions options;
     options.tolerance = 1e-6;
-    options.maxIterations = 0;
+    options.maxIterations = 200;
     return options;
   }
 

@@ -51,6 +51,50 @@ BlockSparseMatrix::BlockSparseMatrix(std::vector<int> blockSizes,
   for (int b = 0; b < nb; ++b) rowStart_[b + 1] += rowStart_[b];
 }
 
+BlockSparseMatrix BlockSparseMatrix::fromBlockCsr(std::vector<int> blockSizes,
+                                                  std::vector<int> rowStart,
+                                                  std::vector<int> blockColumns,
+                                                  std::vector<double> values) {
+  BlockSparseMatrix m;
+  m.blockSize_ = std::move(blockSizes);
+  const int nb = m.blockCount();
+  m.blockOffset_.assign(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) {
+    if (m.blockSize_[b] < 1 || m.blockSize_[b] > 3)
+      throw std::invalid_argument("block " + std::to_string(b) + " has size " +
+                                  std::to_string(m.blockSize_[b]) + ", expected 1, 2 or 3");
+    m.blockOffset_[b + 1] = m.blockOffset_[b] + m.blockSize_[b];
+  }
+  const auto nnzBlocks = static_cast<int>(blockColumns.size());
+  if (static_cast<int>(rowStart.size()) != nb + 1 || rowStart.front() != 0 ||
+      rowStart.back() != nnzBlocks)
+    throw std::invalid_argument("fromBlockCsr: row starts do not match the block columns");
+  m.valueStart_.resize(nnzBlocks);
+  m.diagonal_.assign(nb, -1);
+  int valueCount = 0;
+  for (int b = 0; b < nb; ++b) {
+    if (rowStart[b + 1] < rowStart[b])
+      throw std::invalid_argument("fromBlockCsr: row starts decrease");
+    for (int k = rowStart[b]; k < rowStart[b + 1]; ++k) {
+      const int c = blockColumns[k];
+      if (c < 0 || c >= nb || (k > rowStart[b] && c <= blockColumns[k - 1]))
+        throw std::invalid_argument("fromBlockCsr: block columns of row " + std::to_string(b) +
+                                    " are not strictly increasing inside [0, " +
+                                    std::to_string(nb) + ")");
+      if (c == b) m.diagonal_[b] = k;
+      m.valueStart_[k] = valueCount;
+      valueCount += m.blockSize_[b] * m.blockSize_[c];
+    }
+  }
+  if (valueCount != static_cast<int>(values.size()))
+    throw std::invalid_argument("fromBlockCsr: " + std::to_string(values.size()) +
+                                " values, the blocks need " + std::to_string(valueCount));
+  m.rowStart_ = std::move(rowStart);
+  m.col_ = std::move(blockColumns);
+  m.values_ = std::move(values);
+  return m;
+}
+
 void BlockSparseMatrix::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const int nb = blockCount();
   for (int i = 0; i < nb; ++i) {

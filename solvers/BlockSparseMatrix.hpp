@@ -21,6 +21,12 @@ class BlockSparseMatrix {
   BlockSparseMatrix() = default;
   // Blocks with the same (row, col) are summed; the block sizes must be 1, 2 or 3.
   BlockSparseMatrix(std::vector<int> blockSizes, std::vector<MatrixBlockEntry> entries);
+  // Directly from block-CSR arrays, without per-block allocations (the assembler's hot path):
+  // block row b holds the blocks k in [rowStart[b], rowStart[b + 1]), columns blockColumns[k]
+  // strictly increasing within a row, values concatenated block after block (each row-major,
+  // blockSize(row) x blockSize(col)). Throws std::invalid_argument when the arrays disagree.
+  static BlockSparseMatrix fromBlockCsr(std::vector<int> blockSizes, std::vector<int> rowStart,
+                                        std::vector<int> blockColumns, std::vector<double> values);
 
   [[nodiscard]] int blockCount() const { return static_cast<int>(blockSize_.size()); }
   [[nodiscard]] int size() const { return blockOffset_.empty() ? 0 : blockOffset_.back(); }

@@ -1,5 +1,6 @@
 #include <coulomb/solvers/ContactProblem.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -96,23 +97,27 @@ std::optional<std::string> ContactProblem::validate() const {
     return std::string("the block partition of W differs from the problem's blocks");
   for (size_t b = 0; b < blocks.size(); ++b) {
     const ConstraintBlock& k = blocks[b];
-    std::ostringstream at;
-    at << "block " << b << " (" << blockKindName(k.kind) << ")";
+    // Built only for a message: a stream per block made validate() a hot spot of every step.
+    auto at = [&] {
+      std::ostringstream name;
+      name << "block " << b << " (" << blockKindName(k.kind) << ")";
+      return name;
+    };
     if (k.isContact()) {
       const double m[3] = {k.mu, k.mu1, k.mu2};
       const char* names[3] = {"mu", "mu1", "mu2"};
       for (int t = 0; t < 3; ++t) {
         if (t > 0 && !k.anisotropic) break;
-        if (!std::isfinite(m[t])) return at.str() + ": " + names[t] + " is not finite";
+        if (!std::isfinite(m[t])) return at().str() + ": " + names[t] + " is not finite";
         if (m[t] < 0) {
-          msg << at.str() << ": " << names[t] << " = " << m[t] << " < 0";
+          msg << at().str() << ": " << names[t] << " = " << m[t] << " < 0";
           return msg.str();
         }
       }
     }
     if (k.kind == BlockKind::Bounded) {
       if (std::isnan(k.lower) || std::isnan(k.upper) || k.lower > k.upper) {
-        msg << at.str() << ": bounds [" << k.lower << ", " << k.upper << "] are not an interval";
+        msg << at().str() << ": bounds [" << k.lower << ", " << k.upper << "] are not an interval";
         return msg.str();
       }
     }
@@ -125,8 +130,8 @@ std::optional<std::string> ContactProblem::validate() const {
         return "warm start at " + where(blocks, offset, i) + " is not finite";
   // Entries of W: non-finite anywhere (stored), diagonal positive.
   auto diagonalOk = [&](int row, double w) -> std::optional<std::string> {
-    size_t b = 0;
-    while (b + 1 < blocks.size() && offset[b + 1] <= row) ++b;
+    const auto b = static_cast<size_t>(std::upper_bound(offset.begin(), offset.end(), row) -
+                                       offset.begin() - 1);
     const bool frictionlessTangent =
         blocks[b].isContact() && row != offset[b] &&
         (blocks[b].anisotropic ? (row - offset[b] == 1 ? blocks[b].mu1 : blocks[b].mu2)

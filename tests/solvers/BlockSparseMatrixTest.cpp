@@ -50,3 +50,23 @@ TEST(BlockSparseMatrix, RejectsBadBlocks) {
   EXPECT_THROW(BlockSparseMatrix({3}, {{0, 0, std::vector<double>(4, 0.0)}}),
                std::invalid_argument);
 }
+
+TEST(BlockSparseMatrix, FromBlockCsrEqualsTheEntryConstructor) {
+  const BlockSparseMatrix A = mixed();
+  const BlockSparseMatrix B = BlockSparseMatrix::fromBlockCsr(
+      {3, 1}, {0, 2, 4}, {0, 1, 0, 1}, {4, 1, 0, 1, 3, 0, 0, 0, 2, 1, 0, 2, 1, 0, 2, 6});
+  EXPECT_EQ(B.nonZeroBlocks(), A.nonZeroBlocks());
+  EXPECT_EQ(B.diagonalBlock(0), A.diagonalBlock(0));
+  EXPECT_EQ(B.diagonalBlock(1), A.diagonalBlock(1));
+  EXPECT_EQ(B.values(), A.values());
+  EXPECT_EQ(B.toDense(), A.toDense());
+}
+
+TEST(BlockSparseMatrix, FromBlockCsrRejectsInconsistentArrays) {
+  const std::vector<double> nine(9, 1.0);
+  EXPECT_THROW(BlockSparseMatrix::fromBlockCsr({3}, {0, 1}, {0}, {1.0}), std::invalid_argument);
+  EXPECT_THROW(BlockSparseMatrix::fromBlockCsr({3}, {0, 2}, {0}, nine), std::invalid_argument);
+  EXPECT_THROW(BlockSparseMatrix::fromBlockCsr({1, 1}, {0, 2, 2}, {1, 0}, {1.0, 1.0}),
+               std::invalid_argument);  // columns not increasing
+  EXPECT_THROW(BlockSparseMatrix::fromBlockCsr({3}, {0, 1}, {1}, nine), std::invalid_argument);
+}
