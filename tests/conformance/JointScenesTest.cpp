@@ -1,7 +1,7 @@
 // The jointed built-in scenes of SCENES.md (A6 chain, B8 pendulum, B9 double_pendulum, B10
 // four_bar) and the rope bridge load from samples/scenes and meet the pass criteria that the
 // engine meets today; the others are measured and printed (docs/tuning.md has the figures).
-// Numbers are copied from SCENES.md (tests never read ../shared).
+// Numbers are copied from SCENES.md (tests never read the design folder).
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 

@@ -1,7 +1,7 @@
 #pragma once
 // The jointed scenes of SCENES.md (A6 chain, B8 pendulum, B9 double pendulum, B10 four-bar)
 // built through the C++ API, with the metrics those sections define. Numbers copied from
-// SCENES.md (tests never read ../shared).
+// SCENES.md (tests never read the design folder).
 #include <coulomb/engine/World.hpp>
 
 #include <Eigen/Geometry>

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Copies the shared URDF corpus into tests/data/urdf for tests/engine/UrdfLoaderTest.cpp.
 
-    python3 tests/data/urdf/copy_urdf_corpus.py ../shared/urdf tests/data/urdf
+    python3 tests/data/urdf/copy_urdf_corpus.py $CORPUS/urdf tests/data/urdf
 
 Per model: the URDF byte for byte, the <collision> meshes of the models listed in WITH_MESHES
 (at the same relative paths; visual meshes are never read by the loader), and
