@@ -138,7 +138,7 @@ bool runFreeFlightDemo(std::ostream& out) {
       measureProjectile(scenes::loadBuiltinScene("projectile"));
   const TopMeasurement top = measureSymmetricTop(scenes::loadBuiltinScene("symmetric_top"));
   const DzhanibekovMeasurement racket = measureDzhanibekov(scenes::loadBuiltinScene("dzhanibekov"));
-  out << "Coulomb free-flight samples (contacts come in later issues)\n\n";
+  out << "Coulomb free-flight samples (scripts/demo then compares the contact solvers on a pyramid)\n\n";
   print(out, projectile);
   print(out, top);
   print(out, racket);
