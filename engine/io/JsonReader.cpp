@@ -149,4 +149,23 @@ std::string JsonNode::string(const char* key, const std::string& fallback) const
   return has(key) ? child(key).string() : fallback;
 }
 
+Eigen::Quaterniond parseOrientation(const JsonNode& node) {
+  if (node.raw().is_object()) {
+    node.allowOnly({"axis", "angle"});
+    const Eigen::Vector3d axis = node.child("axis").vector3();
+    if (axis.norm() < 1e-12) node.child("axis").fail("must be non-zero");
+    return Eigen::Quaterniond(Eigen::AngleAxisd(node.child("angle").number(), axis.normalized()));
+  }
+  if (!node.raw().is_array() || node.raw().size() != 4)
+    node.fail("expected a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle\": radians}");
+  const Eigen::Quaterniond q(node.element(0).number(), node.element(1).number(),
+                             node.element(2).number(), node.element(3).number());
+  if (std::abs(q.norm() - 1.0) > 1e-6) {
+    std::ostringstream out;
+    out << "quaternion [w, x, y, z] must have unit norm (norm " << q.norm() << ")";
+    node.fail(out.str());
+  }
+  return q.normalized();
+}
+
 }  // namespace coulomb::engine::io

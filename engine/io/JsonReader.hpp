@@ -5,6 +5,7 @@
 #include <coulomb/engine/CoulombError.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -56,5 +57,9 @@ class JsonNode {
   std::string source_;
   std::string path_;
 };
+
+/// An orientation: a unit quaternion [w, x, y, z] (norm within 1e-6, then normalised) or
+/// {"axis": [x, y, z], "angle": radians}. Errors name the JSON path.
+Eigen::Quaterniond parseOrientation(const JsonNode& node);
 
 }  // namespace coulomb::engine::io

@@ -67,21 +67,6 @@ int linkOfJoint(const UrdfModel& model, const std::string& joint, const std::str
   throw CoulombError(message);
 }
 
-Eigen::Quaterniond parseRotation(const JsonNode& node) {
-  if (node.raw().is_object()) {
-    node.allowOnly({"axis", "angle"});
-    const Eigen::Vector3d axis = node.child("axis").vector3();
-    if (axis.norm() < 1e-12) node.child("axis").fail("must be non-zero");
-    return Eigen::Quaterniond(Eigen::AngleAxisd(node.child("angle").number(), axis.normalized()));
-  }
-  if (!node.raw().is_array() || node.raw().size() != 4)
-    node.fail("expected a quaternion [w, x, y, z] or {\"axis\": [x, y, z], \"angle\": radians}");
-  const Eigen::Quaterniond q(node.element(0).number(), node.element(1).number(),
-                             node.element(2).number(), node.element(3).number());
-  if (std::abs(q.norm() - 1.0) > 1e-6) node.fail("quaternion [w, x, y, z] must have unit norm");
-  return q.normalized();
-}
-
 std::map<std::string, double> parseJointValues(const JsonNode& node) {
   std::map<std::string, double> values;
   for (const std::string& joint : node.objectKeys())
@@ -122,7 +107,7 @@ UrdfPlacement parsePlacement(const JsonNode& node, const std::filesystem::path& 
   p.name = node.string("name", p.file.stem().string());
   p.options.basePose.position = node.vector3("position", Eigen::Vector3d::Zero());
   if (node.has("orientation"))
-    p.options.basePose.rotation = parseRotation(node.child("orientation"));
+    p.options.basePose.rotation = parseOrientation(node.child("orientation"));
   const std::string base = node.string("base", "fixed");
   if (base == "floating")
     p.options.base = UrdfBase::Floating;
