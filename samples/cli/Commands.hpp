@@ -14,10 +14,11 @@ struct CommandError : std::runtime_error {
   int exitStatus;
 };
 
-void registerSceneCommands(CLI::App& app);   // run, scenes          (SceneCommands.cpp)
-void registerSolverCommands(CLI::App& app);  // solve, solvers       (SolverCommands.cpp)
-void registerUrdfCommands(CLI::App& app);    // urdf info, dynamics  (UrdfCommands.cpp)
-void registerCompareCommand(CLI::App& app);  // compare              (CompareCommand.cpp)
-void registerBenchCommand(CLI::App& app);    // bench                (BenchCommand.cpp)
+void registerSceneCommands(CLI::App& app);       // run, scenes          (SceneCommands.cpp)
+void registerSolverCommands(CLI::App& app);      // solve, solvers       (SolverCommands.cpp)
+void registerUrdfCommands(CLI::App& app);        // urdf info, dynamics  (UrdfCommands.cpp)
+void registerCompareCommand(CLI::App& app);      // compare              (CompareCommand.cpp)
+void registerBenchCommand(CLI::App& app);        // bench                (BenchCommand.cpp)
+void registerConformanceCommand(CLI::App& app);  // conformance    (ConformanceCommand.cpp)
 
 }  // namespace coulomb::cli

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   coulomb::cli::registerUrdfCommands(app);
   coulomb::cli::registerCompareCommand(app);
   coulomb::cli::registerBenchCommand(app);
+  coulomb::cli::registerConformanceCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
