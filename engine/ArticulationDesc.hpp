@@ -26,6 +26,10 @@ struct ArticulationLinkDesc {
   std::optional<geometry::SpatialInertia> inertia;
   std::optional<double> density;  // [kg/m^3]
   std::vector<ShapeDesc> shapes;  // placed in the link frame
+  /// [N m or N] Dry friction of the 1-DOF joint (URDF <dynamics friction>): one bounded row
+  /// qd = 0 with |lambda| <= jointFriction h, as joints::JointDef::friction. 0 = none; ignored
+  /// while a motor drives the joint (the motor row already bounds its effort).
+  double jointFriction = 0.0;
 };
 
 /// A ball joint closing a kinematic loop: the point `anchorA` of link `linkA` and the point
@@ -67,6 +71,13 @@ struct JointCouplingDesc {
   double offset = 0.0;
 };
 
+/// A constant generalised force on the 1-DOF joint of link `link` [N m or N], applied every step
+/// (on top of World::applyJointForces, which is cleared each step).
+struct JointTorqueDesc {
+  int link = 0;
+  double torque = 0.0;
+};
+
 struct ArticulationDesc {
   std::string name;                         // prefix of the link proxies' names ("name/link")
   std::vector<ArticulationLinkDesc> links;  // parent-first
@@ -77,6 +88,7 @@ struct ArticulationDesc {
   std::vector<LoopClosureDesc> loopClosures;
   std::vector<JointMotorDesc> motors;
   std::vector<JointCouplingDesc> couplings;
+  std::vector<JointTorqueDesc> jointTorques;
   /// Fraction of a loop-closure, coupling or joint-limit position error removed per step
   /// (Baumgarte).
   double errorReduction = 0.2;

@@ -35,11 +35,13 @@ constexpr double kLimitMargin = 1e-4;
 constexpr double kRegularization = 1e-9;
 
 // sourceKey layout of the stage's blocks: articulation slot in bits 32-47, then a kind bit
-// (closure 31, motor 30, coupling 29; none: a limit, (link << 1) | upper) and the index. Coupling
+// (closure 31, motor 30, coupling 29, friction 28; none: a limit, (link << 1) | upper) and the
+// index. Coupling
 // blocks also carry a tag in bits 56-63 so that treeRows can recognise them among any blocks.
 constexpr std::uint64_t kClosureBit = 1u << 31;
 constexpr std::uint64_t kMotorBit = 1u << 30;
 constexpr std::uint64_t kCouplingBit = 1u << 29;
+constexpr std::uint64_t kFrictionBit = 1u << 28;
 constexpr std::uint64_t kTagMask = 0xffull << 56;
 constexpr std::uint64_t kCouplingTag = 0xc5ull << 56;
 
@@ -83,6 +85,11 @@ void ArticulationStage::appendConstraintEdges(std::vector<ConstraintEdge>& edges
     for (std::size_t m = 0; m < r.motors.size(); ++m) {  // always active
       constraints_.push_back(
           {static_cast<std::int32_t>(a), ConstraintKind::Motor, static_cast<std::int32_t>(m)});
+      edges.push_back({representative, ConstraintEdge::kNoBody});
+    }
+    for (int i = 0; i < r.model->linkCount(); ++i) {  // joint friction: always active
+      if (r.friction[i] <= 0.0) continue;
+      constraints_.push_back({static_cast<std::int32_t>(a), ConstraintKind::Friction, i});
       edges.push_back({representative, ConstraintEdge::kNoBody});
     }
     for (std::size_t c = 0; c < r.couplings.size(); ++c) {
@@ -148,6 +155,21 @@ RowBlock ArticulationStage::motorBlock(const Record& r, int m, double h) const {
   block.warmStart = RowVector::Constant(1, r.motorWarm[m]);
   const auto articulation = static_cast<std::uint64_t>(&r - records_.data());
   block.sourceKey = (articulation << 32) | kMotorBit | static_cast<std::uint64_t>(m);
+  return block;
+}
+
+RowBlock ArticulationStage::frictionBlock(const Record& r, int i, double h) const {
+  // Dry joint friction, the model of joints::JointDef::friction (JointLimitMotor.hpp): bounded
+  // row qd_i = 0 with |lambda| <= f h; it holds the joint while the load stays below f and
+  // slides against f above it.
+  RowBlock block = jointRateBlock(r, i, 1.0);
+  block.kind = RowKind::Bounded;
+  block.bias = RowVector::Zero(1);
+  block.lower = RowVector::Constant(1, -r.friction[i] * h);
+  block.upper = RowVector::Constant(1, r.friction[i] * h);
+  block.warmStart = RowVector::Constant(1, r.frictionWarm[i]);
+  const auto articulation = static_cast<std::uint64_t>(&r - records_.data());
+  block.sourceKey = (articulation << 32) | kFrictionBit | static_cast<std::uint64_t>(i);
   return block;
 }
 
@@ -231,6 +253,7 @@ RowBlock ArticulationStage::rowBlockOf(const TreeConstraint& c, const geometry::
   }
 
   if (c.kind == ConstraintKind::Motor) return motorBlock(r, c.index, h);
+  if (c.kind == ConstraintKind::Friction) return frictionBlock(r, c.index, h);
   if (c.kind == ConstraintKind::Coupling) return couplingBlock(c.articulation, c.index, h);
 
   // Limit of link i's 1-DOF joint: u = s qd_i >= 0.
@@ -275,8 +298,10 @@ void ArticulationStage::storeImpulses(const joints::RowSet& rows, std::size_t fi
       r.motorWarm[key & (kMotorBit - 1)] = impulse[0];
     } else if ((key & kCouplingBit) != 0) {
       r.couplingWarm[key & (kCouplingBit - 1)] = impulse[0];
+    } else if ((key & kFrictionBit) != 0) {
+      r.frictionWarm[key & (kFrictionBit - 1)] = impulse[0];
     } else {
-      const auto index = static_cast<std::size_t>(key & (kCouplingBit - 1));
+      const auto index = static_cast<std::size_t>(key & (kFrictionBit - 1));
       ((index & 1u) == 0 ? r.lowerWarm : r.upperWarm)[index >> 1] = impulse[0];
     }
   }

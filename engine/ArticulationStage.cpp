@@ -87,6 +87,19 @@ void checkMotorsAndCouplings(const ArticulationDesc& desc, const Articulation& m
     if (!std::isfinite(c.multiplier) || !std::isfinite(c.offset))
       throw CoulombError(who + ": " + what + ": multiplier and offset must be finite");
   }
+  for (std::size_t k = 0; k < desc.jointTorques.size(); ++k) {
+    const JointTorqueDesc& t = desc.jointTorques[k];
+    const std::string what = "joint torque " + std::to_string(k);
+    oneDofLink(t.link, what);
+    if (!std::isfinite(t.torque)) throw CoulombError(who + ": " + what + ": torque is not finite");
+  }
+  for (int i = 0; i < n; ++i) {
+    const double f = desc.links[static_cast<std::size_t>(i)].jointFriction;
+    if (!std::isfinite(f) || f < 0.0)
+      throw CoulombError(who + ": link '" + model.link(i).name +
+                         "': joint friction must be finite and >= 0");
+    if (f > 0.0) oneDofLink(i, "joint friction");
+  }
 }
 
 }  // namespace
@@ -158,6 +171,13 @@ ArticulationId ArticulationStage::add(Prepared prepared, std::vector<BodyId> pro
   r.motorWarm.assign(r.motors.size(), 0.0);
   r.couplings = prepared.desc.couplings;
   r.couplingWarm.assign(r.couplings.size(), 0.0);
+  for (const ArticulationLinkDesc& link : prepared.desc.links)
+    r.friction.push_back(link.jointFriction);
+  for (const JointMotorDesc& motor : r.motors) r.friction[motor.link] = 0.0;  // the motor bounds it
+  r.frictionWarm.assign(r.links.size(), 0.0);
+  r.constantTau = Eigen::VectorXd::Zero(r.model->nv());
+  for (const JointTorqueDesc& t : prepared.desc.jointTorques)
+    r.constantTau[r.model->vIndex(t.link)] += t.torque;
   r.errorReduction = prepared.desc.errorReduction;
   r.selfCollision = prepared.desc.selfCollision;
   const auto slot = static_cast<std::int32_t>(records_.size());
@@ -266,7 +286,7 @@ void ArticulationStage::predictVelocities(const Eigen::Vector3d& gravity, double
                                           geometry::BodyState& state) {
   for (Record& r : records_) {
     if (r.model->gravity() != gravity) r.model = std::make_unique<Articulation>(r.links, gravity);
-    r.qd = integrators::predictArticulationVelocity(*r.model, r.q, r.qd, r.tau, h);
+    r.qd = integrators::predictArticulationVelocity(*r.model, r.q, r.qd, r.tau + r.constantTau, h);
     updateProxies(r, state);
   }
 }

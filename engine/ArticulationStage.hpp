@@ -13,10 +13,10 @@
 //  - the impulses update qd by M^-1 J_t^T lambda (one O(n) pass per tree);
 //  - islands: a tree is one unit: every link maps to its root link's proxy (the representative),
 //    so a link touching a body joins the tree and the body in one island and one problem.
-// Joint limits (lower/upper of revolute and prismatic tree joints), joint motors, mimic couplings
-// and loop closures are row blocks on the proxies as well (relative twist of parent and child along
-// the joint axis; point coincidence), with island edges appended after every other edge of the
-// step.
+// Joint limits (lower/upper of revolute and prismatic tree joints), joint motors, joint friction,
+// mimic couplings and loop closures are row blocks on the proxies as well (relative twist of parent
+// and child along the joint axis; point coincidence), with island edges appended after every other
+// edge of the step.
 #include <coulomb/engine/ArticulationDesc.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
@@ -134,15 +134,17 @@ class ArticulationStage {
     std::vector<double> motorWarm;
     std::vector<JointCouplingDesc> couplings;
     std::vector<double> couplingWarm;
+    std::vector<double> friction, frictionWarm;  // per link; friction 0 = no row
+    Eigen::VectorXd constantTau;                 // ArticulationDesc::jointTorques, every step
     double errorReduction = 0.2;
     bool selfCollision = false;
     std::uint32_t generation = 0;
   };
-  enum class ConstraintKind : std::uint8_t { Lower, Upper, Closure, Motor, Coupling };
+  enum class ConstraintKind : std::uint8_t { Lower, Upper, Closure, Motor, Coupling, Friction };
   struct TreeConstraint {
     std::int32_t articulation = 0;
     ConstraintKind kind = ConstraintKind::Lower;
-    std::int32_t index = 0;  // link (limits), closure, motor or coupling
+    std::int32_t index = 0;  // link (limits, friction), closure, motor or coupling
   };
   struct TreeRows;  // per tree: the joint-space Jacobians of the row blocks on it
 
@@ -153,6 +155,7 @@ class ArticulationStage {
                                                const geometry::BodyState& state) const;
   [[nodiscard]] joints::RowBlock jointRateBlock(const Record& r, int link, double sign) const;
   [[nodiscard]] joints::RowBlock motorBlock(const Record& r, int motor, double h) const;
+  [[nodiscard]] joints::RowBlock frictionBlock(const Record& r, int link, double h) const;
   [[nodiscard]] joints::RowBlock couplingBlock(std::int32_t articulation, int coupling,
                                                double h) const;
   /// The joint-space row of a coupling block (sourceKey tagged kCouplingTag), else nullopt.

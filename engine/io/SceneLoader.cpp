@@ -393,8 +393,14 @@ Scene parseScene(std::string_view text, const std::string& source,
           parseArticulation(articulations.element(i), materials, baseDirectory));
   }
   if (root.has("urdf")) {  // robots after the articulations (docs/scene-format.md "urdf")
-    std::vector<ArticulationDesc> robots = parseUrdfSection(root.child("urdf"), baseDirectory);
-    std::move(robots.begin(), robots.end(), std::back_inserter(scene.articulations));
+    UrdfSection robots = parseUrdfSection(root.child("urdf"), baseDirectory);
+    std::move(robots.articulations.begin(), robots.articulations.end(),
+              std::back_inserter(scene.articulations));
+    const auto offset = static_cast<int>(scene.bodies.size());  // maximal robots: bodies, joints
+    for (SceneJoint& j : robots.joints)
+      scene.joints.push_back({j.bodyA < 0 ? -1 : j.bodyA + offset,
+                              j.bodyB < 0 ? -1 : j.bodyB + offset, std::move(j.def)});
+    std::move(robots.bodies.begin(), robots.bodies.end(), std::back_inserter(scene.bodies));
   }
   if (root.has("joint_stabilization"))
     scene.settings.jointStabilization =

@@ -418,6 +418,7 @@ ArticulationDesc toArticulationDesc(const UrdfModel& model, const std::string& n
     link.parent = body.parent;
     link.joint = body.joint;
     link.inertia = body.inertia;
+    if (body.joint.nv() == 1) link.jointFriction = body.jointFriction;  // friction rows
     for (const UrdfCollision& c : body.collisions)
       link.shapes.push_back({c.shape, c.pose, c.material, {}});
     desc.links.push_back(std::move(link));

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <variant>
@@ -97,7 +98,7 @@ UrdfMotorSpec parseMotor(const JsonNode& node) {
 UrdfPlacement parsePlacement(const JsonNode& node, const std::filesystem::path& sceneDirectory) {
   node.allowOnly({"file", "name", "position", "orientation", "base", "on_floor", "q", "motors",
                   "hold", "max_effort", "package_path", "fuse_fixed_joints", "joint_damping",
-                  "mimic", "self_collision", "friction"});
+                  "mimic", "self_collision", "friction", "torques", "coordinates"});
   UrdfPlacement p;
   try {
     p.file = resolveRobotFile(node.child("file").string(), sceneDirectory, "file");
@@ -121,6 +122,7 @@ UrdfPlacement parsePlacement(const JsonNode& node, const std::filesystem::path& 
     for (const std::string& joint : motors.objectKeys())
       p.motors[joint] = parseMotor(motors.child(joint.c_str()));
   }
+  if (node.has("torques")) p.torques = parseJointValues(node.child("torques"));
   if (node.has("hold")) p.holdAllJoints = node.child("hold").raw() == true;
   if (node.has("max_effort")) p.defaultMaxEffort = node.child("max_effort").positiveNumber();
   if (node.has("package_path")) {
@@ -134,6 +136,12 @@ UrdfPlacement parsePlacement(const JsonNode& node, const std::filesystem::path& 
   if (node.has("mimic")) p.mimicCouplings = node.child("mimic").raw() == true;
   if (node.has("self_collision")) p.selfCollision = node.child("self_collision").raw() == true;
   if (node.has("friction")) p.options.defaultFriction = node.child("friction").positiveNumber();
+  const std::string coordinates = node.string("coordinates", "reduced");
+  if (coordinates == "maximal")
+    p.maximal = true;
+  else if (coordinates != "reduced")
+    node.child("coordinates")
+        .fail("expected \"reduced\" or \"maximal\" (got \"" + coordinates + "\")");
   return p;
 }
 
@@ -172,7 +180,14 @@ std::filesystem::path resolveRobotFile(const std::string& file,
   throw CoulombError(message);
 }
 
-ArticulationDesc placeUrdf(const UrdfPlacement& placement, const std::string& where) {
+namespace {
+
+struct PlacedRobot {
+  UrdfModel model;  // the root joints moved by the floor clearance
+  ArticulationDesc desc;
+};
+
+PlacedRobot place(const UrdfPlacement& placement, const std::string& where) {
   UrdfModel model;
   try {
     model = loadUrdfFile(placement.file, placement.options);
@@ -205,6 +220,8 @@ ArticulationDesc placeUrdf(const UrdfPlacement& placement, const std::string& wh
         desc.motors.push_back({static_cast<int>(i), JointMotorMode::Position, q[tree.qIndex(i)],
                                effortOf(static_cast<int>(i), std::nullopt), 0.2,
                                std::numeric_limits<double>::infinity()});
+  for (const auto& [joint, torque] : placement.torques)
+    desc.jointTorques.push_back({linkOfJoint(model, joint, where + ": torques"), torque});
   if (placement.mimicCouplings)
     for (const UrdfMimic& mimic : model.mimics)
       desc.couplings.push_back({linkOfJoint(model, mimic.joint, where + ": mimic"),
@@ -217,19 +234,56 @@ ArticulationDesc placeUrdf(const UrdfPlacement& placement, const std::string& wh
       const double lift = *placement.clearance - lowest;
       for (ArticulationLinkDesc& link : desc.links)
         if (link.parent < 0) link.joint.parentToJoint.position.z() += lift;
+      for (UrdfBody& body : model.bodies)
+        if (body.parent < 0) body.joint.parentToJoint.position.z() += lift;
     }
   }
-  return desc;
+  return {std::move(model), std::move(desc)};
 }
 
-std::vector<ArticulationDesc> parseUrdfSection(const JsonNode& node,
-                                               const std::filesystem::path& sceneDirectory) {
-  std::vector<ArticulationDesc> robots;
+}  // namespace
+
+ArticulationDesc placeUrdf(const UrdfPlacement& placement, const std::string& where) {
+  return place(placement, where).desc;
+}
+
+UrdfMaximal placeUrdfMaximal(const UrdfPlacement& placement, const std::string& where) {
+  const std::string prefix = where.empty() ? std::string() : where + ": ";
+  PlacedRobot robot = place(placement, where);
+  if (!robot.desc.jointTorques.empty())
+    throw CoulombError(prefix +
+                       "\"torques\" need reduced coordinates (drop \"coordinates\": "
+                       "\"maximal\" or the torques)");
+  UrdfMaximal out = toMaximal(robot.model, placement.name, robot.desc.q);
+  for (const JointMotorDesc& motor : robot.desc.motors) {
+    const std::string& joint = robot.model.bodies[static_cast<std::size_t>(motor.link)].joint.name;
+    if (motor.mode != JointMotorMode::Velocity)
+      throw CoulombError(prefix + "motor on '" + joint +
+                         "': maximal-coordinate joints take velocity motors only (\"mode\": "
+                         "\"velocity\"; \"hold\" and position targets need reduced coordinates)");
+    joints::JointDef& def = out.joints[static_cast<std::size_t>(out.jointIndex.at(joint))].def;
+    def.motor = {true, motor.target, motor.maxEffort};
+    def.friction = 0.0;  // not combined with a motor (JointDef.hpp)
+  }
+  return out;
+}
+
+UrdfSection parseUrdfSection(const JsonNode& node, const std::filesystem::path& sceneDirectory) {
+  UrdfSection robots;
   for (std::size_t i = 0; i < node.arraySize(); ++i) {
     const JsonNode entry = node.element(i);
     const UrdfPlacement placement = parsePlacement(entry, sceneDirectory);
     try {
-      robots.push_back(placeUrdf(placement, "robot"));
+      if (!placement.maximal) {
+        robots.articulations.push_back(placeUrdf(placement, "robot"));
+        continue;
+      }
+      UrdfMaximal maximal = placeUrdfMaximal(placement, "robot");
+      const auto offset = static_cast<int>(robots.bodies.size());
+      for (UrdfMaximalJoint& j : maximal.joints)
+        robots.joints.push_back({j.bodyA < 0 ? -1 : j.bodyA + offset,
+                                 j.bodyB < 0 ? -1 : j.bodyB + offset, std::move(j.def)});
+      std::move(maximal.bodies.begin(), maximal.bodies.end(), std::back_inserter(robots.bodies));
     } catch (const CoulombError& e) {
       entry.fail(e.what());  // "<scene>: urdf[i]: robot: ..."
     }

@@ -6,6 +6,7 @@
 #include <coulomb/engine/ArticulationDesc.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
 #include <coulomb/engine/io/UrdfLoader.hpp>
+#include <coulomb/engine/io/UrdfMaximal.hpp>
 
 #include <filesystem>
 #include <map>
@@ -35,11 +36,16 @@ struct UrdfPlacement {
   std::optional<double> clearance;
   std::map<std::string, double> q;  // initial joint positions by name (others 0)
   std::map<std::string, UrdfMotorSpec> motors;
+  /// Constant joint torques [N m] or forces [N] by joint name, applied every step.
+  std::map<std::string, double> torques;
   /// Position motors holding every 1-DOF joint without a motor at its initial position.
   bool holdAllJoints = false;
   double defaultMaxEffort = 100.0;  // [N m or N] when a joint gives no <limit effort>
   bool mimicCouplings = true;       // URDF <mimic> as coupling rows
   bool selfCollision = false;
+  /// Free bodies and maximal-coordinate joints instead of a tree (UrdfMaximal.hpp): velocity
+  /// motors only (JointDef::motor), no torques, no mimic couplings (the followers stay free).
+  bool maximal = false;
 };
 
 /// Where a scene's `file` is looked for: the scene's folder, then each folder of the environment
@@ -52,9 +58,19 @@ std::filesystem::path resolveRobotFile(const std::string& file,
 /// Loads the robot and builds its articulation. Errors name `where` (file, JSON path).
 ArticulationDesc placeUrdf(const UrdfPlacement& placement, const std::string& where);
 
-/// The `urdf` array of a JSON scene, entries in order.
-std::vector<ArticulationDesc> parseUrdfSection(const JsonNode& node,
-                                               const std::filesystem::path& sceneDirectory);
+/// The robot in maximal coordinates (placement.maximal): bodies at the link poses of the initial
+/// q (lifted to the floor as placeUrdf does), hinge/prismatic joints with friction, limits and
+/// velocity motors. Errors name `where` and what needs reduced coordinates.
+UrdfMaximal placeUrdfMaximal(const UrdfPlacement& placement, const std::string& where);
+
+/// The `urdf` array of a JSON scene, entries in order: trees, and the bodies and joints of the
+/// robots loaded with "coordinates": "maximal" (joint ends index `bodies`, -1 = the world).
+struct UrdfSection {
+  std::vector<ArticulationDesc> articulations;
+  std::vector<BodyDesc> bodies;
+  std::vector<SceneJoint> joints;
+};
+UrdfSection parseUrdfSection(const JsonNode& node, const std::filesystem::path& sceneDirectory);
 
 /// A scene of one URDF file: a static floor (plane z = 0, friction 0.8) and the robot resting on
 /// it (fixed base: lowest shape on the floor; floating: dropped from 5 cm), joints held by
