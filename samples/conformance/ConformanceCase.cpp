@@ -49,6 +49,7 @@ const std::vector<ConformanceCase>& allCases() {
   static const std::vector<ConformanceCase> cases = [] {
     std::vector<ConformanceCase> all;
     // One line per case group (each helper file adds its own).
+    addFrictionCases(all);
     return all;
   }();
   return cases;
