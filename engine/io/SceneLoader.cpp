@@ -393,7 +393,9 @@ Scene parseScene(std::string_view text, const std::string& source,
           parseArticulation(articulations.element(i), materials, baseDirectory));
   }
   if (root.has("urdf")) {  // robots after the articulations (docs/scene-format.md "urdf")
-    UrdfSection robots = parseUrdfSection(root.child("urdf"), baseDirectory);
+    std::map<std::string, double> friction;  // scene materials for the URDF visual materials
+    for (const auto& [name, material] : materials) friction[name] = material.friction;
+    UrdfSection robots = parseUrdfSection(root.child("urdf"), baseDirectory, friction);
     std::move(robots.articulations.begin(), robots.articulations.end(),
               std::back_inserter(scene.articulations));
     const auto offset = static_cast<int>(scene.bodies.size());  // maximal robots: bodies, joints

@@ -268,11 +268,13 @@ UrdfMaximal placeUrdfMaximal(const UrdfPlacement& placement, const std::string& 
   return out;
 }
 
-UrdfSection parseUrdfSection(const JsonNode& node, const std::filesystem::path& sceneDirectory) {
+UrdfSection parseUrdfSection(const JsonNode& node, const std::filesystem::path& sceneDirectory,
+                             const std::map<std::string, double>& materialFriction) {
   UrdfSection robots;
   for (std::size_t i = 0; i < node.arraySize(); ++i) {
     const JsonNode entry = node.element(i);
-    const UrdfPlacement placement = parsePlacement(entry, sceneDirectory);
+    UrdfPlacement placement = parsePlacement(entry, sceneDirectory);
+    placement.options.materialFriction.insert(materialFriction.begin(), materialFriction.end());
     try {
       if (!placement.maximal) {
         robots.articulations.push_back(placeUrdf(placement, "robot"));

@@ -70,7 +70,10 @@ struct UrdfSection {
   std::vector<BodyDesc> bodies;
   std::vector<SceneJoint> joints;
 };
-UrdfSection parseUrdfSection(const JsonNode& node, const std::filesystem::path& sceneDirectory);
+/// `materialFriction`: the scene's materials by name (friction), for URDF visual materials of the
+/// same name (UrdfOptions::materialFriction).
+UrdfSection parseUrdfSection(const JsonNode& node, const std::filesystem::path& sceneDirectory,
+                             const std::map<std::string, double>& materialFriction = {});
 
 /// A scene of one URDF file: a static floor (plane z = 0, friction 0.8) and the robot resting on
 /// it (fixed base: lowest shape on the floor; floating: dropped from 5 cm), joints held by
