@@ -36,8 +36,8 @@ constexpr double kRegularization = 1e-9;
 
 // sourceKey layout of the stage's blocks: articulation slot in bits 32-47, then a kind bit
 // (closure 31, motor 30, coupling 29, friction 28; none: a limit, (link << 1) | upper) and the
-// index. Coupling
-// blocks also carry a tag in bits 56-63 so that treeRows can recognise them among any blocks.
+// index. Coupling blocks also carry a tag in bits 56-63 so that treeRows can recognise them among
+// any blocks.
 constexpr std::uint64_t kClosureBit = 1u << 31;
 constexpr std::uint64_t kMotorBit = 1u << 30;
 constexpr std::uint64_t kCouplingBit = 1u << 29;

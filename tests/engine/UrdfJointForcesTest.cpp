@@ -108,8 +108,8 @@ TEST(UrdfJointTorque, ConstantTorqueGivesTheAnalyticAcceleration) {
   const Outcome weightless = run(armWorld(R"(, "torques": {"pivot": -5.0})", "[0, 0, 0]"), 40);
   const double a = (-5.0 + kFriction) / kInertia;
   std::cout << "torque -5 N m, no gravity: qdd " << weightless.rateAfterOneStep / kH
-            << " (analytic " << a << "), angle after 0.2 s " << weightless.angle << " (analytic "
-            << 0.5 * a * 0.2 * 0.2 << ")\n";
+            << " (analytic " << a << "), angle after 0.2 s " << weightless.angle
+            << " (semi-implicit Euler a h^2 n (n + 1) / 2: " << a * kH * kH * 40 * 41 / 2 << ")\n";
   EXPECT_NEAR(weightless.rateAfterOneStep / kH, a, 1e-9 * std::abs(a));
   // Semi-implicit Euler: q_n = a h^2 n (n + 1) / 2.
   EXPECT_NEAR(weightless.angle, a * kH * kH * 40 * 41 / 2, 1e-9);
