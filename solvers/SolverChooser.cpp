@@ -143,6 +143,14 @@ SolvePlan SolverChooser::automatic(const ProblemFeatures& f) const {
     plan.reason = "one contact: bgs solves it exactly in one sweep (Algorithm 4.1)";
     return plan;
   }
+  if (f.contacts == 0 && newtonSized) {
+    // Joint rows only (equalities, limits, motors, joint friction): with no cone the problem is a
+    // linear system plus a few bounds, which Newton solves in 1-3 steps, while Gauss-Seidel
+    // converges like a chain's slowest mode (a 10-link chain needed > 50 bgs sweeps per step).
+    plan.solvers = {"ac_newton", "bgs"};
+    plan.reason = "joint rows only (" + what + "): ac_newton, Gauss-Seidel converges slowly";
+    return plan;
+  }
   if (!newtonSized) {
     plan.solvers = {"bgs", "pgs"};
     plan.reason = "large island (" + what + "): bgs, no Newton beyond " +
