@@ -28,6 +28,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// clang before 17 lacks C++20 aggregate deduction (P1816): the C++17 guide keeps it compiling.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 std::string name(ColliderId id) {
   std::ostringstream out;

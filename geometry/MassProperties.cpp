@@ -12,6 +12,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// clang before 17 lacks C++20 aggregate deduction (P1816): the C++17 guide keeps it compiling.
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 constexpr double kPi = std::numbers::pi;
 

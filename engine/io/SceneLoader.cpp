@@ -358,7 +358,7 @@ Scene parseScene(std::string_view text, const std::string& source,
   nlohmann::json document;
   try {
     document = nlohmann::json::parse(text.begin(), text.end());
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range (1e999)
     throw CoulombError(source + ": invalid JSON: " + e.what());
   }
   const JsonNode root(document, source, "");

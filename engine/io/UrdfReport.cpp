@@ -64,7 +64,7 @@ UrdfJointState parseUrdfJointState(const std::string& text, const std::string& s
   nlohmann::json document;  // JsonNode reads nlohmann::json (not the ordered output type)
   try {
     document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range (1e999)
     throw CoulombError(source + ": not valid JSON (" + e.what() + ")");
   }
   const JsonNode root(document, source, "");

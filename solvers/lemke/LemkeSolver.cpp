@@ -70,9 +70,11 @@ FacetedLcp buildLcp(const PreparedProblem& p, const LemkeOptions& o) {
       maxDiag = std::max(maxDiag, L.Wff(i, i));
     }
     L.Wff.diagonal().array() += o.equalityRegularization * maxDiag;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(L.Wff);
-    Wt -= Wcf * lu.solve(L.Wfc);
-    qt -= Wcf * lu.solve(L.qf);
+    if (nc > 0) {  // Eigen's triangular solve reads entry (0, 0) of an empty right-hand side
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(L.Wff);
+      Wt -= Wcf * lu.solve(L.Wfc);
+      qt -= Wcf * lu.solve(L.qf);
+    }
   }
   // S, g0 and the extra entries (lambda rows/columns, box columns) per block, in block order.
   L.S = Eigen::MatrixXd::Zero(nc, lcpSize);
