@@ -100,7 +100,14 @@ void StatsJson::writeStep(const engine::StepReport& report, double stepSeconds) 
                                {"contact_points", report.collision.contactPoints},
                                {"collision_failures", report.collisionFailures.size()},
                                {"fallbacks", report.fallbacks()},
-                               {"islands", islands}};
+                               {"islands", islands},
+                               {"joints",
+                                {{"count", report.joints.joints},
+                                 {"max_linear_error", report.joints.maxLinearError},
+                                 {"max_angular_error", report.joints.maxAngularError},
+                                 {"correction_iterations", report.joints.correctionIterations},
+                                 {"correction_error", report.joints.correctionError},
+                                 {"correction_converged", report.joints.correctionConverged}}}};
   out_ << (firstStep_ ? "\n    " : ",\n    ") << step.dump();
   firstStep_ = false;
 }
@@ -124,6 +131,10 @@ void StatsJson::finish(const engine::io::Scene& scene, const engine::World& worl
       {"all_islands", tallyJson(metrics.allSolvers(), metrics.steps())},
       {"max_penetration", metrics.maxPenetration()},
       {"max_drift", metrics.maxDrift()},
+      {"joints",
+       {{"max_linear_error", metrics.maxJointGap()},
+        {"max_angular_error", metrics.maxJointAngle()},
+        {"correction_failures", metrics.jointCorrectionFailures()}}},
       {"max_contact_points", metrics.maxContactPoints()},
       {"collision_failures", metrics.collisionFailures()},
       {"diverged", metrics.diverged()},
@@ -164,6 +175,14 @@ void printSolverSummary(std::ostream& out, const RunMetrics& metrics) {
                 metrics.medianStepMilliseconds(), metrics.meanStepMilliseconds(),
                 metrics.maxPenetration(), metrics.maxDrift());
   out << line;
+  if (metrics.maxJointGap() > 0.0 || metrics.maxJointAngle() > 0.0) {
+    std::snprintf(line, sizeof line,
+                  "  joints: max gap %.3g m, max misalignment %.3g rad, %llu steps with an "
+                  "unconverged drift correction\n",
+                  metrics.maxJointGap(), metrics.maxJointAngle(),
+                  static_cast<unsigned long long>(metrics.jointCorrectionFailures()));
+    out << line;
+  }
 }
 
 }  // namespace coulomb::cli

@@ -121,6 +121,9 @@ void RunMetrics::observe(const engine::World& world, const engine::StepReport& r
   }
   maxContactPoints_ = std::max(maxContactPoints_, points);
   collisionFailures_ += report.collisionFailures.size();
+  maxJointGap_ = std::max(maxJointGap_, report.joints.maxLinearError);
+  maxJointAngle_ = std::max(maxJointAngle_, report.joints.maxAngularError);
+  if (!report.joints.correctionConverged) ++jointCorrectionFailures_;
   const geometry::BodyState& s = world.state();
   for (std::size_t i = 0; i < s.size() && i < startPositions_.size(); ++i)
     if (s.isDynamic(i))

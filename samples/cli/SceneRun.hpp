@@ -78,6 +78,12 @@ class RunMetrics {
   [[nodiscard]] double finalEnergy() const { return finalEnergy_; }
   /// Largest increase of the mechanical energy from one step to the next [J] (0 if it never grew).
   [[nodiscard]] double maxEnergyIncrease() const { return maxEnergyIncrease_; }
+  /// Largest joint anchor gap / slider offset after any step [m] and largest axis misalignment
+  /// [~rad] (StepReport::joints): the joint drift of the run; 0 without joints.
+  [[nodiscard]] double maxJointGap() const { return maxJointGap_; }
+  [[nodiscard]] double maxJointAngle() const { return maxJointAngle_; }
+  /// Steps whose predicted-state correction stopped above its tolerance.
+  [[nodiscard]] std::uint64_t jointCorrectionFailures() const { return jointCorrectionFailures_; }
   [[nodiscard]] std::uint64_t steps() const { return steps_; }
   [[nodiscard]] std::uint64_t maxContactPoints() const { return maxContactPoints_; }
   [[nodiscard]] std::uint64_t collisionFailures() const { return collisionFailures_; }
@@ -96,6 +102,9 @@ class RunMetrics {
   double initialEnergy_ = 0.0;
   double finalEnergy_ = 0.0;
   double maxEnergyIncrease_ = 0.0;
+  double maxJointGap_ = 0.0;
+  double maxJointAngle_ = 0.0;
+  std::uint64_t jointCorrectionFailures_ = 0;
   std::uint64_t steps_ = 0;
   std::uint64_t maxContactPoints_ = 0;
   std::uint64_t collisionFailures_ = 0;

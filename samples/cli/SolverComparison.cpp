@@ -26,6 +26,7 @@ ComparisonRow runForComparison(const engine::io::Scene& scene, double timeCapSec
   row.maxDrift = metrics.maxDrift();
   row.energyChange = metrics.finalEnergy() - metrics.initialEnergy();
   row.fallbacks = all.fallbacks;
+  row.maxJointGap = metrics.maxJointGap();
   row.unconverged = all.unconverged;
   std::ostringstream note;
   if (metrics.diverged()) note << "DIVERGED at t=" << world.time() << " s";
@@ -47,9 +48,9 @@ std::vector<std::string> splitList(const std::string& text) {
 
 void printComparisonHeader(std::ostream& out) {
   char line[512];
-  std::snprintf(line, sizeof line, "%-12s %10s %9s %6s %9s %9s %9s %9s %10s %9s %9s  %s\n",
+  std::snprintf(line, sizeof line, "%-12s %10s %9s %6s %9s %9s %9s %9s %10s %9s %9s %11s  %s\n",
                 "solver", "ms/step", "iter_mean", "max", "res_mean", "res_max", "max_pen_m",
-                "drift_m", "dE_J", "fallbacks", "unconv", "used / note");
+                "drift_m", "dE_J", "fallbacks", "unconv", "joint_gap_m", "used / note");
   out << line << std::flush;
 }
 
@@ -57,11 +58,11 @@ void printComparisonRow(std::ostream& out, const ComparisonRow& r) {
   char line[512];
   const std::string tail = r.used + (r.note.empty() ? "" : "; " + r.note);
   std::snprintf(line, sizeof line,
-                "%-12s %10.4f %9.2f %6d %9.2e %9.2e %9.2e %9.2e %10.3e %9llu %9llu  %s\n",
+                "%-12s %10.4f %9.2f %6d %9.2e %9.2e %9.2e %9.2e %10.3e %9llu %9llu %11.2e  %s\n",
                 r.solver.c_str(), r.msPerStep, r.iterationsMean, r.iterationsMax, r.residualMean,
                 r.residualMax, r.maxPenetration, r.maxDrift, r.energyChange,
                 static_cast<unsigned long long>(r.fallbacks),
-                static_cast<unsigned long long>(r.unconverged), tail.c_str());
+                static_cast<unsigned long long>(r.unconverged), r.maxJointGap, tail.c_str());
   out << line << std::flush;
 }
 

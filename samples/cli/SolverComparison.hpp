@@ -9,6 +9,7 @@
 //                that should rest, how far it did not
 //   energy       E(T) - E(0), E = kinetic + gravitational potential of the dynamic bodies [J]
 //   fallbacks    extra solver attempts over the run (the plan's fallbacks)
+//   joint_gap    largest joint anchor gap / slider offset after any step [m] (0 without joints)
 #include <cstdint>
 #include <limits>
 #include <ostream>
@@ -34,6 +35,7 @@ struct ComparisonRow {
   double maxDrift = 0.0;
   double energyChange = 0.0;
   std::uint64_t fallbacks = 0;
+  double maxJointGap = 0.0;
   std::uint64_t unconverged = 0;  // island solves whose applied answer did not converge
   std::string note;               // "diverged at t=..", "capped: simulated X of Y s"
 };

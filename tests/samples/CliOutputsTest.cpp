@@ -152,6 +152,32 @@ TEST_F(CliOutputs, ComparePrintsOneRowPerSolver) {
   EXPECT_NE(r.output.find("ms/step"), std::string::npos) << r.output;
 }
 
+TEST_F(CliOutputs, JointDriftIsReportedByRunStatsAndCompare) {
+  // The built-in pendulum (a ball joint, predicted-state correction): the stats give every step's
+  // joint gap and the run's largest, `compare` a joint_gap_m column. A gap above 1e-6 m would be
+  // a correction failure; a gap of exactly 0 would mean the figure is not measured at all.
+  const CommandResult run = runCoulomb("run pendulum --steps 50 --stats " + path("stats.json"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("joints: max gap"), std::string::npos) << run.output;
+  std::ifstream statsFile(path("stats.json"));
+  const nlohmann::json stats = nlohmann::json::parse(statsFile);
+  ASSERT_EQ(stats.at("per_step").size(), 50u);
+  for (const auto& step : stats.at("per_step")) {
+    const auto& joints = step.at("joints");
+    EXPECT_EQ(joints.at("count").get<int>(), 1);
+    EXPECT_LT(joints.at("max_linear_error").get<double>(), 1e-6) << joints.dump();
+    EXPECT_TRUE(joints.at("correction_converged").get<bool>()) << joints.dump();
+  }
+  const double runGap = stats.at("joints").at("max_linear_error").get<double>();
+  EXPECT_GT(runGap, 0.0);
+  EXPECT_LT(runGap, 1e-6);
+  EXPECT_EQ(stats.at("joints").at("correction_failures").get<int>(), 0);
+
+  const CommandResult compare = runCoulomb("compare pendulum --solvers ac_newton --steps 20");
+  ASSERT_EQ(compare.status, 0) << compare.output;
+  EXPECT_NE(compare.output.find("joint_gap_m"), std::string::npos) << compare.output;
+}
+
 TEST_F(CliOutputs, BadSolverNameIsNamedWithNonZeroExit) {
   const std::string scene = writeScene(0.5);
   const CommandResult run = runCoulomb("run " + scene + " --solver no_such_solver --steps 2");
