@@ -161,6 +161,9 @@ void registerSceneCommands(CLI::App& app) {
                          "Time step [s] (default: the scene's)");
   runCommand->add_option("--steps", options->overrides.steps,
                          "Number of steps (default: the scene's)");
+  runCommand->add_option("--mu", options->overrides.friction,
+                         "Friction coefficient of every material of the scene (every shape of "
+                         "every body and link; default: the scene's)");
   runCommand->add_option("--out", options->trajectoryPath,
                          "Write every moving body's state at every step as CSV");
   runCommand->add_option("--stats", options->statsPath,

@@ -44,6 +44,15 @@ engine::io::Scene loadScene(const std::string& nameOrPath, const SceneOverrides&
       throw CommandError("--tol must be finite and > 0");
     scene.settings.solverOptions.tolerance = *overrides.tolerance;
   }
+  if (overrides.friction) {
+    if (!std::isfinite(*overrides.friction) || *overrides.friction < 0.0)
+      throw CommandError("--mu must be finite and >= 0");
+    for (engine::BodyDesc& body : scene.bodies)
+      for (engine::ShapeDesc& shape : body.shapes) shape.material.friction = *overrides.friction;
+    for (engine::ArticulationDesc& articulation : scene.articulations)
+      for (auto& link : articulation.links)
+        for (engine::ShapeDesc& shape : link.shapes) shape.material.friction = *overrides.friction;
+  }
   return scene;
 }
 

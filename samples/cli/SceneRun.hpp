@@ -26,6 +26,7 @@ struct SceneOverrides {
   std::optional<std::uint64_t> steps;
   std::optional<int> maxIterations;  // solver iteration cap per island (0 = solver default)
   std::optional<double> tolerance;   // common relative residual target
+  std::optional<double> friction;    // mu of every shape's material (--mu)
   bool urdfFloating = false;         // a .urdf scene: floating base (default fixed)
   bool urdfLimp = false;             // a .urdf scene: no motors holding the joints
 };
