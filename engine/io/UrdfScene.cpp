@@ -294,7 +294,7 @@ UrdfSection parseUrdfSection(const JsonNode& node, const std::filesystem::path& 
 }
 
 Scene urdfFileScene(const std::filesystem::path& file, UrdfBase base, bool hold,
-                    const std::vector<std::filesystem::path>& packagePath) {
+                    const std::vector<std::filesystem::path>& packagePath, bool maximal) {
   Scene scene;
   scene.source = file.string();
   scene.name = file.stem().string();
@@ -313,7 +313,18 @@ Scene urdfFileScene(const std::filesystem::path& file, UrdfBase base, bool hold,
   placement.options.packagePath = packagePath;
   placement.clearance = base == UrdfBase::Floating ? 0.05 : 0.0;
   placement.holdAllJoints = hold;
-  scene.articulations.push_back(placeUrdf(placement, ""));  // loader errors name the file
+  if (!maximal) {
+    scene.articulations.push_back(placeUrdf(placement, ""));  // loader errors name the file
+    return scene;
+  }
+  if (hold)
+    throw CoulombError(file.string() +
+                       ": maximal coordinates cannot hold the joints (position motors need the "
+                       "tree); add --limp");
+  UrdfMaximal robot = placeUrdfMaximal(placement, "");
+  for (UrdfMaximalJoint& j : robot.joints)  // after the floor: body indices shift by one
+    scene.joints.push_back({j.bodyA < 0 ? -1 : j.bodyA + 1, j.bodyB + 1, std::move(j.def)});
+  std::move(robot.bodies.begin(), robot.bodies.end(), std::back_inserter(scene.bodies));
   return scene;
 }
 

@@ -77,8 +77,10 @@ UrdfSection parseUrdfSection(const JsonNode& node, const std::filesystem::path& 
 
 /// A scene of one URDF file: a static floor (plane z = 0, friction 0.8) and the robot resting on
 /// it (fixed base: lowest shape on the floor; floating: dropped from 5 cm), joints held by
-/// position motors at their initial positions when `hold` is set.
+/// position motors at their initial positions when `hold` is set. `maximal`: free bodies and
+/// maximal joints instead of a tree (UrdfMaximal.hpp; cannot be combined with `hold`).
 Scene urdfFileScene(const std::filesystem::path& file, UrdfBase base, bool hold,
-                    const std::vector<std::filesystem::path>& packagePath = {});
+                    const std::vector<std::filesystem::path>& packagePath = {},
+                    bool maximal = false);
 
 }  // namespace coulomb::engine::io

@@ -154,6 +154,8 @@ void registerSceneCommands(CLI::App& app) {
                        "A .urdf robot gets a floating base (default: fixed)");
   runCommand->add_flag("--limp", options->overrides.urdfLimp,
                        "A .urdf robot's joints are not held by motors (default: held)");
+  runCommand->add_flag("--maximal", options->overrides.urdfMaximal,
+                       "A .urdf robot as free bodies and maximal joints (needs --limp)");
   runCommand->add_option("--solver", options->overrides.solver,
                          "Contact solver of every island: auto, a name of `coulomb solvers`, "
                          "NAME! (no fallback) or a chain a,b,c (default: the scene's)");

@@ -19,7 +19,7 @@ engine::io::Scene loadScene(const std::string& nameOrPath, const SceneOverrides&
       scene = engine::io::urdfFileScene(
           nameOrPath,
           overrides.urdfFloating ? engine::io::UrdfBase::Floating : engine::io::UrdfBase::Fixed,
-          !overrides.urdfLimp);
+          !overrides.urdfLimp, {}, overrides.urdfMaximal);
     else
       scene = scenes::resolveScene(nameOrPath);
   } catch (const engine::CoulombError& e) {

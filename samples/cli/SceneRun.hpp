@@ -29,6 +29,7 @@ struct SceneOverrides {
   std::optional<double> friction;    // mu of every shape's material (--mu)
   bool urdfFloating = false;         // a .urdf scene: floating base (default fixed)
   bool urdfLimp = false;             // a .urdf scene: no motors holding the joints
+  bool urdfMaximal = false;          // a .urdf scene: free bodies and maximal joints
 };
 
 /// The scene `nameOrPath` (built-in name or JSON file) with the overrides applied. A solver

@@ -9,6 +9,7 @@
 #include <coulomb/engine/World.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
 #include <coulomb/engine/io/UrdfMaximal.hpp>
+#include <coulomb/engine/io/UrdfScene.hpp>
 #include <coulomb/joints/tree/TreeDynamics.hpp>
 
 #include <gtest/gtest.h>
@@ -186,6 +187,27 @@ TEST(UrdfMaximal, SceneEntryMakesBodiesAndJoints) {
         "need reduced coordinates");
   fails(R"({"file": "kuka_iiwa/model.urdf", "coordinates": "minimal"})",
         "expected \"reduced\" or \"maximal\"");
+}
+
+TEST(UrdfMaximal, OneFileSceneOnAFloor) {  // `coulomb run robot.urdf --maximal --limp`
+  const auto file = kCorpus / "kuka_iiwa/model.urdf";
+  const engine::io::Scene scene =
+      engine::io::urdfFileScene(file, engine::io::UrdfBase::Fixed, false, {}, true);
+  ASSERT_EQ(scene.bodies.size(), 9u);  // floor, static base, 7 links
+  ASSERT_EQ(scene.joints.size(), 7u);
+  EXPECT_EQ(scene.joints[0].bodyA, 1);
+  EXPECT_EQ(scene.joints[0].bodyB, 2);
+  engine::World world = engine::io::buildWorld(scene);
+  for (int k = 0; k < 20; ++k) world.step(0.005);
+  for (std::size_t j = 0; j < world.jointCount(); ++j)
+    EXPECT_LT(anchorGap(world, world.joint(geometry::JointId{static_cast<std::uint32_t>(j), 0})),
+              1e-4);
+  try {
+    (void)engine::io::urdfFileScene(file, engine::io::UrdfBase::Fixed, true, {}, true);
+    ADD_FAILURE() << "expected an error";
+  } catch (const engine::CoulombError& e) {
+    EXPECT_NE(std::string(e.what()).find("--limp"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
