@@ -251,7 +251,10 @@ void ArticulationStage::applyJointForces(ArticulationId id, const Eigen::VectorX
   if (tau.size() != r.model->nv() || !tau.allFinite())
     throw CoulombError(quoted(r.name) + ": joint forces need " + std::to_string(r.model->nv()) +
                        " finite values (got " + std::to_string(tau.size()) + ")");
-  r.tau += tau;
+  const Eigen::VectorXd sum = r.tau + tau;  // finite calls can still add up to +-inf
+  if (!sum.allFinite())
+    throw CoulombError(quoted(r.name) + ": the joint forces accumulated for this step overflow");
+  r.tau = sum;
 }
 
 void ArticulationStage::setMotorTarget(ArticulationId id, int motor, double target) {

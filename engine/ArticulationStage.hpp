@@ -45,6 +45,10 @@ struct LinkRef {
   [[nodiscard]] bool valid() const { return articulation >= 0; }
 };
 
+namespace io {
+struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
+}
+
 class ArticulationStage {
  public:
   /// A validated description: the model and the proxy bodies to create (World::createBody).
@@ -120,6 +124,7 @@ class ArticulationStage {
   void clearForces();
 
  private:
+  friend struct io::SnapshotAccess;
   struct Record {
     std::string name;
     std::vector<joints::tree::TreeLink> links;

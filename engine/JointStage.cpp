@@ -71,6 +71,10 @@ bool JointStage::broken(geometry::JointId id) const {
   return records_[slotOf(id)].broken;
 }
 
+void JointStage::breakJoint(geometry::JointId id) {
+  records_[slotOf(id)].broken = true;
+}
+
 std::size_t JointStage::count() const {
   return static_cast<std::size_t>(
       std::count_if(records_.begin(), records_.end(), [](const Record& r) { return r.alive; }));

@@ -25,6 +25,10 @@ struct JointReaction {
 /// the world frame for an invalid body id). The World stores them in the COM frames.
 using JointDesc = joints::JointDef;
 
+namespace io {
+struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
+}
+
 class JointStage {
  public:
   /// Adds a joint whose frames are already in the bodies' COM frames and which is valid.
@@ -34,6 +38,8 @@ class JointStage {
   [[nodiscard]] const joints::JointDef& def(geometry::JointId id) const;
   [[nodiscard]] const JointReaction& reaction(geometry::JointId id) const;
   [[nodiscard]] bool broken(geometry::JointId id) const;
+  /// Marks the joint broken (it stops acting), e.g. when one of its bodies is quarantined.
+  void breakJoint(geometry::JointId id);
   [[nodiscard]] std::size_t count() const;
   /// Live joints with `body` at either end (for removing a body).
   [[nodiscard]] std::vector<geometry::JointId> jointsOf(geometry::BodyId body) const;
@@ -57,6 +63,7 @@ class JointStage {
   void finishStep(const geometry::BodyState& state, double h, JointStepReport& report);
 
  private:
+  friend struct io::SnapshotAccess;
   struct Record {
     joints::JointDef def;
     std::uint32_t generation = 0;

@@ -30,6 +30,10 @@ struct SleepSettings {
   [[nodiscard]] std::optional<std::string> validate() const;
 };
 
+namespace io {
+struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
+}
+
 class Sleep {
  public:
   /// Wakes every sleeping group touched by an awake dynamic body in `manifolds` (a body dropped on
@@ -46,6 +50,7 @@ class Sleep {
   [[nodiscard]] std::size_t sleepingBodies(const geometry::BodyState& state) const;
 
  private:
+  friend struct io::SnapshotAccess;
   void resize(std::size_t n);
   std::vector<double> slowFor_;      // [s] per body: how long it has been slow
   std::vector<std::int32_t> group_;  // per sleeping body: the island (smallest body) it slept with

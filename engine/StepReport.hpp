@@ -36,6 +36,14 @@ struct JointStepReport {
   std::vector<geometry::JointId> broken;  // joints that broke in this step
 };
 
+/// A body (or articulation) the World-level guard isolated in this step (engine/Quarantine.hpp).
+struct QuarantineEvent {
+  geometry::BodyId body;                  // invalid for an articulation
+  geometry::ArticulationId articulation;  // invalid for a free body
+  std::string name;                       // the body's or the articulation's name
+  std::string reason;                     // e.g. "non-finite velocity after the velocity prediction"
+};
+
 struct StepReport {
   std::uint64_t stepIndex = 0;    // index of this step (0 for the first)
   double timeStep = 0.0;          // [s] h used
@@ -47,6 +55,7 @@ struct StepReport {
   std::vector<geometry::CollisionFailure> collisionFailures;  // pairs skipped this step
   std::vector<IslandReport> islands;
   JointStepReport joints;  // drift, predicted-state correction, breakage
+  std::vector<QuarantineEvent> quarantined;  // bodies and trees isolated in this step
   double seconds = 0.0;  // [s] wall clock of the whole step
 
   [[nodiscard]] std::size_t fallbacks() const {

@@ -76,6 +76,7 @@ BodyId World::createBody(const BodyDesc& desc) {
   state_.assign(slot, desc.motionType, body.comPose, desc.linearVelocity, desc.angularVelocity,
                 body.massProperties.mass, body.massProperties.inertiaAboutCom);
   names_[slot] = desc.name;
+  quarantine_.reset(slot);
   solverOverrides_[slot] = desc.solver;
   masses_[slot] = body.massProperties;
   const BodyId id{static_cast<std::uint32_t>(slot), generations_[slot]};
@@ -244,10 +245,13 @@ StepReport World::step(double h) {
       ++report.kinematicBodies;
   }
 
+  quarantine_.begin(state_, articulations_);                                        // last good
   integrators::predictFreeVelocities(state_, settings_.gravity, h);                 // v*
   articulations_.predictVelocities(settings_.gravity, h, state_);                   // trees' v*
+  guard("after the velocity prediction", report);                                   // bad v*
   collision_.step(colliders_, state_.poses, [this](const auto& a, const auto& b) {  // manifolds
     if (!articulations_.keepPair(a.body.index, b.body.index)) return false;
+    if (quarantine_.isolated(a.body.index) || quarantine_.isolated(b.body.index)) return false;
     return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index) ||
            articulations_.isLink(a.body.index) || articulations_.isLink(b.body.index);
   });
@@ -267,6 +271,7 @@ StepReport World::step(double h) {
   correctPenetrations(h, rows, sources, normals, report);  // split impulse
   joints_.finishStep(state_, h, report.joints);            // reactions, breakage, drift
   sleep_.update(islands, state_, settings_.sleep, h);      // slow islands fall asleep
+  guard("at the end of the step", report);                 // non-finite or runaway bodies
 
   state_.clearForces();
   articulations_.clearForces();
@@ -279,6 +284,23 @@ StepReport World::step(double h) {
   report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return report;
+}
+
+void World::guard(const char* stage, StepReport& report) {
+  for (std::size_t i = 0; i < state_.size(); ++i) {
+    if (!state_.isDynamic(i) || quarantine_.isolated(i)) continue;
+    const std::optional<std::string> why = quarantine_.check(i, state_, settings_.quarantine);
+    if (!why) continue;
+    const BodyId id = idAt(i);
+    quarantine_.isolate(i, state_);
+    for (const geometry::JointId joint : joints_.jointsOf(id)) joints_.breakJoint(joint);
+    report.quarantined.push_back({id, {}, names_[i], *why + " " + stage});
+  }
+  for (QuarantineEvent& e : quarantine_.guardTrees(articulations_, state_, settings_.quarantine)) {
+    e.name = names_[articulations_.linkBody(e.articulation, 0).index];
+    e.reason += std::string(" ") + stage;
+    report.quarantined.push_back(std::move(e));
+  }
 }
 
 IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& rows,

@@ -8,6 +8,7 @@
 #include <coulomb/engine/JointStage.hpp>
 #include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
+#include <coulomb/engine/Quarantine.hpp>
 #include <coulomb/engine/Sleep.hpp>
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
@@ -22,6 +23,10 @@
 #include <vector>
 
 namespace coulomb::engine {
+
+namespace io {
+struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
+}
 
 class World {
  public:
@@ -80,6 +85,11 @@ class World {
   [[nodiscard]] std::uint64_t stepCount() const { return stepCount_; }
   /// Hash of every body's pose and velocities (bit patterns): equal across identical runs.
   [[nodiscard]] std::uint64_t stateHash() const;
+  /// True once the World-level guard isolated the body (engine/Quarantine.hpp); throws for a
+  /// stale id.
+  [[nodiscard]] bool quarantined(geometry::BodyId id) const {
+    return quarantine_.isolated(slotOf(id));
+  }
   /// The id of the body in slot `index` (for iterating over state() arrays), or an invalid id.
   [[nodiscard]] geometry::BodyId idAt(std::size_t index) const;
 
@@ -118,6 +128,9 @@ class World {
   void setProblemObserver(ProblemObserver observer) { problemObserver_ = std::move(observer); }
 
  private:
+  friend struct io::SnapshotAccess;  // engine/io/Snapshot.cpp: saves and restores the state
+  /// Quarantines every dynamic body whose state is bad after `stage` (engine/Quarantine.hpp).
+  void guard(const char* stage, StepReport& report);
   /// The per-island stages of step(): rows, assembly, solver plan, solve, impulses, warm starts.
   IslandReport solveIsland(const Island& island, double h, joints::RowSet& rows,
                            std::vector<ContactRowSource>& sources, VelocityProblemNormals& normals);
@@ -144,6 +157,7 @@ class World {
   ProblemAssembler assembler_;
   JointStage joints_;
   ArticulationStage articulations_;
+  Quarantine quarantine_;
   solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
   ProblemObserver problemObserver_;
   double time_ = 0.0;

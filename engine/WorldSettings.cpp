@@ -34,6 +34,8 @@ std::optional<std::string> WorldSettings::validate() const {
     out << "joint stabilization: " << *bad;
   } else if (auto badSleep = sleep.validate()) {
     out << *badSleep;
+  } else if (auto badGuard = quarantine.validate()) {
+    out << *badGuard;
   } else {
     return std::nullopt;
   }

@@ -1,6 +1,7 @@
 #pragma once
 // Every tunable of a World, with its unit, default and the reason for the default.
 #include <coulomb/engine/ContactSettings.hpp>
+#include <coulomb/engine/QuarantineSettings.hpp>
 #include <coulomb/engine/Sleep.hpp>
 #include <coulomb/geometry/CollisionPipeline.hpp>
 #include <coulomb/joints/Stabilization.hpp>
@@ -13,6 +14,8 @@
 
 namespace coulomb::engine {
 
+/// Every field is saved by snapshots: a new field needs a line in engine/io/Snapshot.cpp
+/// (transferSettings), or a restored World keeps its own value of it.
 struct WorldSettings {
   /// [m/s^2] Uniform gravitational acceleration. Default: standard gravity along -z (z up, as in
   /// URDF/ROS and the scenes of SCENES.md).
@@ -45,6 +48,8 @@ struct WorldSettings {
   geometry::CollisionSettings collision;
   /// Islands at rest stop being simulated until touched (engine/Sleep.hpp). Default off.
   SleepSettings sleep;
+  /// Sanity limits of the World-level guard (engine/Quarantine.hpp, docs/reliability.md).
+  QuarantineSettings quarantine;
   /// How joint drift is removed (joints/Stabilization.hpp; docs/tuning.md compares the policies
   /// with figures). A joint's own JointDef::stabilization overrides it.
   joints::Stabilization jointStabilization;

@@ -1,5 +1,6 @@
 // `coulomb run`, `coulomb scenes` and `coulomb demo` (docs/architecture.md section 0).
 #include <coulomb/engine/World.hpp>
+#include <coulomb/engine/io/Snapshot.hpp>
 
 #include <cstdio>
 #include <fstream>
@@ -27,6 +28,8 @@ struct RunOptions {
   std::string contactsPath;
   std::string captureDirectory;
   std::optional<std::uint64_t> captureStep;
+  std::string loadSnapshotPath;  // restored into the scene's world before the first step
+  std::string saveSnapshotPath;  // written after the last step
 };
 
 void writeTrajectoryRows(std::ostream& out, const engine::World& world) {
@@ -69,6 +72,8 @@ std::string jsonVector(const Eigen::Vector3d& v) {
 void run(const RunOptions& options) {
   const engine::io::Scene scene = loadScene(options.scene, options.overrides);
   engine::World world = buildWorldFor(scene);
+  if (!options.loadSnapshotPath.empty())  // the same scene, continued (engine/io/Snapshot.hpp)
+    engine::io::loadSnapshotFile(world, options.loadSnapshotPath);
 
   std::optional<std::ofstream> trajectory;
   if (!options.trajectoryPath.empty()) {
@@ -95,6 +100,8 @@ void run(const RunOptions& options) {
              if (stats) stats->writeStep(report, report.seconds);
            });
   if (capture) capture->throwIfFailed();
+  if (!options.saveSnapshotPath.empty())
+    engine::io::saveSnapshotFile(world, options.saveSnapshotPath);
   const Totals final = totals(world.state());
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(world.stateHash()));
@@ -110,6 +117,11 @@ void run(const RunOptions& options) {
             << "  kinetic energy " << initial.kineticEnergy << " -> " << final.kineticEnergy
             << " J\n"
             << "  state hash " << hash << "\n";
+  if (!options.loadSnapshotPath.empty())
+    std::cout << "  continued from snapshot " << options.loadSnapshotPath << "\n";
+  if (!options.saveSnapshotPath.empty())
+    std::cout << "  snapshot of step " << world.stepCount() << " saved to "
+              << options.saveSnapshotPath << "\n";
   if (metrics.diverged())
     std::cout << "  DIVERGED at t=" << world.time() << " s (non-finite, or beyond 1000 m or m/s)\n";
   if (metrics.collisionFailures() > 0)
@@ -180,6 +192,11 @@ void registerSceneCommands(CLI::App& app) {
       ->add_option("--capture-step", options->captureStep,
                    "Capture only this step (0 = the first; default: every step)")
       ->needs("--capture");
+  runCommand->add_option("--load-snapshot", options->loadSnapshotPath,
+                         "Continue from this snapshot (saved by --save-snapshot from the same "
+                         "scene and options) for --steps more steps");
+  runCommand->add_option("--save-snapshot", options->saveSnapshotPath,
+                         "Save the whole state after the last step (binary, versioned)");
   runCommand->callback([options] { run(*options); });
 
   app.add_subcommand("scenes", "List the built-in scenes")->callback(listScenes);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 
+#include <algorithm>
+
 #include "scenes/SceneRegistry.hpp"
 
 using namespace coulomb;
@@ -18,20 +20,27 @@ std::uint64_t runAndHash(const engine::io::Scene& scene, double h, std::uint64_t
 TEST(SceneHash, EveryBuiltinSceneRunsBitIdenticallyTwice) {
   for (const scenes::BuiltinScene& builtin : scenes::builtinScenes()) {
     const engine::io::Scene scene = scenes::loadBuiltinScene(builtin.name);
-    // The contact scenes cost ms per step: a short horizon still crosses many contact solves.
-    // The two largest (pyramid_20, box_pile_1000) are left to the benchmarks; the 55-box pyramid's
-    // bit-identical rerun is tests/conformance/PyramidDeterminismTest.cpp.
-    if (scene.bodies.size() > 100) continue;
-      // Small free-flight scenes run long (drift shows late); scenes with contacts, joints or
-      // articulations run 100 steps (30 under the sanitizers, which are 5-10x slower).
+    // Every registered scene, including the ones added later (this loop is the registry). Small
+    // free-flight scenes run long (drift shows late); scenes with a ground, joints or
+    // articulations run 100 steps (30 under the sanitizers, which are 5-10x slower); the two
+    // largest (pyramid_20, box_pile_1000: > 100 bodies) run 2 steps, a cold-started and a
+    // warm-started contact solve; the 55-box pyramid's long bit-identical rerun is
+    // tests/conformance/PyramidDeterminismTest.cpp.
 #ifdef COULOMB_SANITIZE
     constexpr std::uint64_t kBusySteps = 30;
 #else
     constexpr std::uint64_t kBusySteps = 100;
 #endif
-    const bool busy =
-        scene.bodies.size() > 3 || !scene.articulations.empty() || !scene.joints.empty();
-    const std::uint64_t steps = std::min<std::uint64_t>(scene.steps, busy ? kBusySteps : 2000);
+    constexpr std::uint64_t kLargeSteps = 2;
+    const bool large = scene.bodies.size() > 100;
+    const bool hasStatic = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const auto& b) {
+      return b.motionType == geometry::MotionType::Static;  // a ground: contacts
+    });
+    const bool busy = hasStatic || scene.bodies.size() > 3 || !scene.articulations.empty() ||
+                      !scene.joints.empty();
+    const std::uint64_t steps = std::min<std::uint64_t>(scene.steps, large  ? kLargeSteps
+                                                                     : busy ? kBusySteps
+                                                                            : 2000);
     const std::uint64_t first = runAndHash(scene, scene.settings.timeStep, steps);
     const std::uint64_t second =
         runAndHash(scenes::loadBuiltinScene(builtin.name), scene.settings.timeStep, steps);

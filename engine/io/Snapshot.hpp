@@ -1,0 +1,47 @@
+#pragma once
+// Snapshots: the whole dynamic state of a World in a versioned binary blob, so that a run can be
+// continued later (or elsewhere) bit for bit (issue 13 item 3; docs/reliability.md).
+//
+// What is saved: every body slot's state (pose, velocities, inverse masses and inertias, motion
+// type, sleep flag, pending forces), the quarantine flags, the settings (all of them), the
+// solver overrides, the contact cache (manifolds with their warm-start impulses), the sleep
+// timers, every joint's broken flag, warm starts and last reaction, every articulation's q, qd,
+// pending joint forces, link poses, motor targets and warm starts, the step counter and time.
+//
+// What is not saved: the *structure* (shapes, colliders, masses as described, joint definitions,
+// articulation models). A snapshot is restored into a World built from the same scene (same
+// bodies, colliders, joints and articulations created in the same order, e.g. by
+// engine::io::buildWorld on the same Scene); the restore checks this structure (slot count,
+// names, generations, collider ids and owners, joint and articulation counts and sizes) and
+// throws a CoulombError naming the first difference. The problem observer and custom solvers
+// registered in solverRegistry() are not state and are left as they are.
+//
+// File layout: "CLMBSNAP", format version (uint32), byte-order mark (uint32), payload size
+// (uint64), FNV-1a 64 checksum of the payload (uint64), payload. A bad magic, another version,
+// another byte order, a truncated file, a wrong checksum or a mismatched world gives a
+// CoulombError naming the file; the World is then left exactly as it was.
+#include <coulomb/engine/World.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace coulomb::engine::io {
+
+inline constexpr std::uint32_t kSnapshotVersion = 1;
+
+/// The snapshot of `world` as bytes (header included).
+[[nodiscard]] std::vector<std::uint8_t> saveSnapshot(const World& world);
+/// Restores `bytes` into `world`; `source` names the data in error messages (a file name).
+/// Throws CoulombError on a bad snapshot or a World of another structure; `world` is unchanged.
+void restoreSnapshot(World& world, std::span<const std::uint8_t> bytes,
+                     const std::string& source = "<memory>");
+
+/// saveSnapshot into a file; CoulombError naming the file if it cannot be written.
+void saveSnapshotFile(const World& world, const std::filesystem::path& path);
+/// restoreSnapshot from a file; CoulombError naming the file if it cannot be read or is bad.
+void loadSnapshotFile(World& world, const std::filesystem::path& path);
+
+}  // namespace coulomb::engine::io
