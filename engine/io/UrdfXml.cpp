@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -16,6 +17,36 @@ namespace {
 
 const char* const kXacroHint =
     " If this is a xacro file, expand it first: `xacro robot.urdf.xacro > robot.urdf`.";
+
+// Throws unless `text` is UTF-8 (RFC 3629 lead and continuation bytes). TinyXML 2.6.2 trusts a
+// lead byte's sequence length and reads past the end of the text on a truncated sequence (found by
+// fuzz_urdf: heap-buffer-overflow in TiXmlBase::ReadName), so such text never reaches it.
+void requireUtf8(const std::string& text, const std::string& source) {
+  int line = 1;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    std::size_t length = 0;
+    if (lead < 0x80)
+      length = 1;
+    else if (lead >= 0xC2 && lead <= 0xDF)
+      length = 2;
+    else if (lead >= 0xE0 && lead <= 0xEF)
+      length = 3;
+    else if (lead >= 0xF0 && lead <= 0xF4)
+      length = 4;
+    bool valid = length > 0 && i + length <= text.size();
+    for (std::size_t k = 1; valid && k < length; ++k)
+      valid = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+    if (!valid) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02x", static_cast<unsigned>(lead));
+      throw CoulombError(source + ":" + std::to_string(line) + ": not UTF-8 text (byte " + hex +
+                         "). Save the file as UTF-8");
+    }
+    if (lead == '\n') ++line;
+    i += length;
+  }
+}
 
 class XmlChecker {
  public:
@@ -266,6 +297,7 @@ Eigen::Quaterniond quaternionFromRpy(const Eigen::Vector3d& rpy) {
 
 UrdfXmlDocument readUrdfXml(const std::string& text, const std::string& source) {
   XmlChecker check(source);
+  requireUtf8(text, source);
   TiXmlDocument document;
   document.Parse(text.c_str());
   if (document.Error())

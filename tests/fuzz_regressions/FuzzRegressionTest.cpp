@@ -6,6 +6,7 @@
 
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/engine/io/UrdfLoader.hpp>
 
 #include <gtest/gtest.h>
 
@@ -68,6 +69,20 @@ TEST(FuzzRegression, JsonNumberOverflowIsACoulombError) {
     FAIL() << "no error";
   } catch (const coulomb::engine::CoulombError& e) {
     EXPECT_NE(std::string(e.what()).find("big.json: invalid JSON"), std::string::npos) << e.what();
+  }
+}
+
+// Found by fuzz_urdf: TinyXML 2.6.2 read past the end of text ending in a truncated UTF-8
+// sequence (heap-buffer-overflow); such text is refused before TinyXML sees it, naming the line.
+TEST(FuzzRegression, UrdfThatIsNotUtf8IsRefused) {
+  const std::string text = "<robot name=\"r\">\n  <link name=\"a\"/>\n  <box si\xff\xda";
+  try {
+    (void)coulomb::engine::io::parseUrdf(text, "bad.urdf", "/nonexistent");
+    FAIL() << "no error";
+  } catch (const coulomb::engine::CoulombError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.urdf:3: not UTF-8 text (byte 0xff)"),
+              std::string::npos)
+        << e.what();
   }
 }
 
