@@ -56,7 +56,8 @@ joints::RowSet emitContactRows(const Island& island,
       if (manifold.restitution > 0.0 && approach < -settings.restitutionThreshold)
         bias = manifold.restitution * approach;
       // Speculative gap: allow u_N >= -gap/h, so the bodies may just close it in this step.
-      if (point.depth < 0.0 && settings.speculativeContacts)
+      // Gaps within the touching tolerance are rounding (SCENES.md A7): touching, restitution kept.
+      if (point.depth < -settings.touchingTolerance && settings.speculativeContacts)
         bias = std::max(bias, 0.0) - point.depth / h;
       bias += baumgarteBias(settings.penetration, point.depth, h);
       frame.normalVelocityBias = bias;

@@ -23,11 +23,36 @@ struct PenetrationSettings {
   int iterations = 20;
 };
 
+/// How an island's simultaneous impacts are resolved (docs/tuning.md, "Impact laws").
+enum class ImpactLaw {
+  /// Default: Newton's law u_N+ >= -e u_N- on every impacting point in the one velocity problem
+  /// of the step (survey sec. 2.1.6). A striker hitting a row of touching balls pushes them all:
+  /// Newton's cradle gives (-0.6, 0.4, 0.4, 0.4, 0.4) (SCENES.md A7).
+  Simultaneous,
+  /// Impacts resolved pair by pair, each contact an impact of its two bodies alone, sweeping
+  /// the island until no contact impacts (the propagation model of Bender et al. 2014, sec.
+  /// 4.2.2 [BETC12]); the velocity problem then runs on the result. Newton's cradle: (0, 0, 0,
+  /// 0, 1). engine/ImpactPropagation.hpp.
+  Propagating,
+};
+
 struct ContactSettings {
   /// [m/s] Approach speeds below this are treated as inelastic (e = 0): resting contacts must not
   /// bounce on the velocity gravity adds in one step. Default 0.2 m/s (a 2 mm drop at g = 9.81
   /// gives 0.2 m/s; below it a bounce would be invisible but would keep stacks jittering).
   double restitutionThreshold = 0.2;
+  /// Simultaneous (default: one velocity problem per island, no extra pass) or Propagating.
+  ImpactLaw impactLaw = ImpactLaw::Simultaneous;
+  /// [m] Gaps up to this count as touching: bodies placed exactly touching are often ~1e-17 m
+  /// apart after rounding (0.1 * 3 = 0.30000000000000004, SCENES.md A7), and such a point must
+  /// take restitution like a touching one, not be treated as a speculative gap to close. Default
+  /// 1e-9 m: a million times the rounding of coordinates of order 1 m, far below any visible gap.
+  double touchingTolerance = 1e-9;
+  /// Propagating law: most sweeps over the island's contacts; contacts still impacting after
+  /// them are left to the velocity problem (Newton's law there). Default 100: a chain of n
+  /// touching bodies needs at most n sweeps for equal masses; mass ratios can need many more
+  /// impacts, and the cap bounds the cost per step.
+  int maxImpactSweeps = 100;
   /// Speculative points (negative depth = gap) let the bodies close the gap within the step
   /// (u_N >= -gap/h) instead of being pushed apart early. Default on: this is what keeps a
   /// resting contact from flickering on and off.

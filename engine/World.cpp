@@ -1,5 +1,6 @@
 #include <coulomb/engine/BodyBuilder.hpp>
 #include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/ImpactPropagation.hpp>
 #include <coulomb/engine/ImpulseApplier.hpp>
 #include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/World.hpp>
@@ -310,8 +311,10 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
   const Island bodyPart = articulations_.withoutTreeConstraints(island);
   joints::RowSet all = joints_.emitRows(bodyPart, state_, settings_.jointStabilization, h);
   const std::size_t jointBlocks = all.blocks.size();  // joint rows first, then the contacts
-  rows = emitContactRows(joints_.contactPart(bodyPart), manifolds, state_, settings_.contact, h,
-                         sources);
+  const Island contactPart = joints_.contactPart(bodyPart);
+  if (settings_.contact.impactLaw == ImpactLaw::Propagating)  // pairwise impacts change v* first
+    propagateImpacts(contactPart, manifolds, settings_.contact, state_);
+  rows = emitContactRows(contactPart, manifolds, state_, settings_.contact, h, sources);
   all.blocks.insert(all.blocks.end(), rows.blocks.begin(), rows.blocks.end());
   const std::size_t treeBlocks = all.blocks.size();  // tree limits and closures last
   articulations_.emitRows(island, state_, h, all);

@@ -23,6 +23,10 @@ std::optional<std::string> WorldSettings::validate() const {
   } else if (!std::isfinite(contact.restitutionThreshold) || contact.restitutionThreshold < 0.0) {
     out << "restitution threshold must be finite and >= 0 m/s (got " << contact.restitutionThreshold
         << ")";
+  } else if (!std::isfinite(contact.touchingTolerance) || contact.touchingTolerance < 0.0) {
+    out << "touching tolerance must be finite and >= 0 m (got " << contact.touchingTolerance << ")";
+  } else if (contact.maxImpactSweeps < 1) {
+    out << "max impact sweeps must be >= 1 (got " << contact.maxImpactSweeps << ")";
   } else if (!(contact.penetration.beta >= 0.0 && contact.penetration.beta <= 1.0)) {
     out << "penetration beta must be in [0, 1] (got " << contact.penetration.beta << ")";
   } else if (!std::isfinite(contact.penetration.slop) || contact.penetration.slop < 0.0) {

@@ -29,6 +29,16 @@ PenetrationMethod parsePenetrationMethod(const JsonNode& node) {
   node.fail(message + " (split_impulse, baumgarte or none)");
 }
 
+ImpactLaw parseImpactLaw(const JsonNode& node) {
+  const std::string law = node.string();
+  if (law == "simultaneous") return ImpactLaw::Simultaneous;
+  if (law == "propagating") return ImpactLaw::Propagating;
+  std::string message = "unknown impact law '" + law + "'";
+  if (auto s = nearestName(law, {"simultaneous", "propagating"}))
+    message += "; did you mean '" + *s + "'?";
+  node.fail(message + " (simultaneous or propagating)");
+}
+
 void parsePenetration(const JsonNode& node, PenetrationSettings& settings) {
   node.allowOnly({"method", "beta", "slop", "iterations"});
   if (node.has("method")) settings.method = parsePenetrationMethod(node.child("method"));
@@ -71,7 +81,7 @@ std::string parseSolverRequest(const JsonNode& node) {
 void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
   node.allowOnly({"name", "tolerance", "max_iterations", "time_limit", "warm_start",
                   "restitution_threshold", "speculative_contacts", "speculative_margin",
-                  "penetration"});
+                  "penetration", "impact_law", "touching_tolerance", "max_impact_sweeps"});
   solvers::SolverOptions& options = settings.solverOptions;
   if (node.has("name")) settings.solver = parseSolverRequest(node.child("name"));
   if (node.has("tolerance")) options.tolerance = node.child("tolerance").positiveNumber();
@@ -89,6 +99,15 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
     contact.speculativeContacts = parseBool(node.child("speculative_contacts"));
   if (node.has("speculative_margin"))
     settings.collision.speculativeMargin = nonNegative(node.child("speculative_margin"));
+  if (node.has("impact_law")) contact.impactLaw = parseImpactLaw(node.child("impact_law"));
+  if (node.has("touching_tolerance"))
+    contact.touchingTolerance = nonNegative(node.child("touching_tolerance"));
+  if (node.has("max_impact_sweeps")) {
+    const std::uint64_t sweeps = node.child("max_impact_sweeps").unsignedInteger();
+    if (sweeps < 1 || sweeps > 100000)
+      node.child("max_impact_sweeps").fail("must be in [1, 100000]");
+    contact.maxImpactSweeps = static_cast<int>(sweeps);
+  }
   if (node.has("penetration")) parsePenetration(node.child("penetration"), contact.penetration);
 }
 

@@ -50,6 +50,7 @@ const std::vector<ConformanceCase>& allCases() {
     std::vector<ConformanceCase> all;
     // One line per case group (each helper file adds its own).
     addFrictionCases(all);
+    addImpactCases(all);
     addLoopCases(all);
     addStabilityCases(all);
     addStructureCases(all);
