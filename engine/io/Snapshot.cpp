@@ -38,6 +38,9 @@ void transferSettings(Ar& ar, WorldSettings& s) {
   io(ar, s.contact.penetration.beta);
   io(ar, s.contact.penetration.slop);
   io(ar, s.contact.penetration.iterations);
+  ioEnum(ar, s.contact.impactLaw, ImpactLaw::Propagating);
+  io(ar, s.contact.touchingTolerance);
+  io(ar, s.contact.maxImpactSweeps);
   io(ar, s.collision.speculativeMargin);
   io(ar, s.collision.matchDistance);
   io(ar, s.collision.maxMeshContacts);
