@@ -208,12 +208,14 @@ struct SnapshotAccess {
       for (JointMotorDesc& m : r.motors) io(ar, m.target);
       io(ar, r.motorWarm);
       io(ar, r.couplingWarm);
+      io(ar, r.frictionWarm);
       if constexpr (Ar::kLoading) {
         const auto nq = static_cast<std::size_t>(r.model->nq());
         const auto nv = static_cast<std::size_t>(r.model->nv());
         if (static_cast<std::size_t>(r.q.size()) != nq ||
             static_cast<std::size_t>(r.qd.size()) != nv ||
-            static_cast<std::size_t>(r.tau.size()) != nv || r.linkPoses.size() != r.links.size())
+            static_cast<std::size_t>(r.tau.size()) != nv || r.linkPoses.size() != r.links.size() ||
+            r.frictionWarm.size() != r.links.size())
           ar.fail("corrupt: an articulation's state has the wrong size");
       }
     }

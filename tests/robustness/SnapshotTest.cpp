@@ -102,6 +102,32 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, SnapshotContinuation,
                                            Horizon{"box_stack_10", 40, 40}),
                          [](const auto& info) { return std::string(info.param.scene); });
 
+TEST(Snapshot, ALimpRobotWithJointFrictionContinuesBitForBit) {
+  // anymal_standing without its motors and with 2 N m of dry friction in every 1-DOF joint:
+  // the friction rows act (and warm start) while the robot sags.
+  engine::io::Scene scene = scenes::loadBuiltinScene("anymal_standing");
+  ASSERT_FALSE(scene.articulations.empty());
+  int withFriction = 0;
+  for (engine::ArticulationDesc& a : scene.articulations) {
+    a.motors.clear();
+    for (engine::ArticulationLinkDesc& link : a.links)
+      if (link.joint.nv() == 1) {
+        link.jointFriction = 2.0;
+        ++withFriction;
+      }
+  }
+  ASSERT_GT(withFriction, 0);
+  engine::World original = engine::io::buildWorld(scene);
+  for (int n = 0; n < 15; ++n) original.step();
+  const std::vector<std::uint8_t> bytes = io::saveSnapshot(original);
+  for (int n = 0; n < 15; ++n) original.step();
+  engine::World restored = engine::io::buildWorld(scene);
+  io::restoreSnapshot(restored, bytes);
+  for (int n = 0; n < 15; ++n) restored.step();
+  expectSameBodies(original, restored, "limp anymal");
+  EXPECT_TRUE(io::saveSnapshot(original) == io::saveSnapshot(restored));
+}
+
 TEST(Snapshot, SleepStateAndTimersAreRestored) {
   engine::io::Scene scene = scenes::loadBuiltinScene("box_stack_10");
   scene.settings.sleep.enabled = true;
