@@ -4,19 +4,32 @@
 // coefficient and not a force limit), the world's default ERP 0.2 and CFM, auto-disable off (the
 // default), no damping (the default). Stepper: dWorldQuickStep (default 20 SOR-LCP iterations)
 // or dWorldStep (the Dantzig LCP stepper). Material: min of the two geoms' mu and e (one value
-// per scene anyway); bounce only when e > 0, with bounce_vel 0.
+// per scene anyway); bounce only when e > 0, with bounce_vel 0. QuickStep reorders its rows with
+// ODE's global random generator: the seed is reset for every run so a scene's result does not
+// depend on the runs before it. ODE's messages (dWorldStep's "LCP internal error") are counted
+// and reported in the note column instead of printed.
 #include "PeerEngine.hpp"
 
 #include <ode/ode.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <cstdarg>
 
 namespace coulomb::peers {
 namespace {
 
+std::atomic<int> odeMessages{0};
+void countMessage(int, const char*, va_list) {
+  ++odeMessages;
+}
+
 struct OdeLibrary {
-  OdeLibrary() { dInitODE2(0); }
+  OdeLibrary() {
+    dInitODE2(0);
+    dSetMessageHandler(countMessage);
+  }
   ~OdeLibrary() { dCloseODE(); }
   OdeLibrary(const OdeLibrary&) = delete;
   OdeLibrary& operator=(const OdeLibrary&) = delete;
@@ -25,6 +38,8 @@ struct OdeLibrary {
 class OdePeer final : public PeerEngine {
  public:
   OdePeer(const PeerScene& scene, bool quickStep) : dt_(scene.dt), quickStep_(quickStep) {
+    dRandSetSeed(0);
+    messagesAtStart_ = odeMessages;
     dWorldSetGravity(world_, scene.gravity.x(), scene.gravity.y(), scene.gravity.z());
     for (const PeerBody& b : scene.bodies) {
       materials_.push_back(&b);
@@ -86,6 +101,10 @@ class OdePeer final : public PeerEngine {
       dWorldStep(world_, dt_);
     dJointGroupEmpty(contacts_);
   }
+  [[nodiscard]] std::string note() const override {
+    const int n = odeMessages - messagesAtStart_;
+    return n == 0 ? std::string() : "ODE messages: " + std::to_string(n) + "x LCP internal error";
+  }
   void read(std::vector<BodySample>& out) const override {
     out.resize(bodies_.size());
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -146,6 +165,7 @@ class OdePeer final : public PeerEngine {
 
   double dt_;
   bool quickStep_;
+  int messagesAtStart_ = 0;
   static dWorldID createWorld() {
     static const OdeLibrary library;  // dInitODE2 before the first world
     return dWorldCreate();

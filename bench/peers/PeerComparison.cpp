@@ -98,6 +98,8 @@ Run runOne(const std::string& label, const Factory& make, const PeerScene& scene
       break;
     }
   }
+  if (const std::string note = engine->note(); !note.empty())
+    run.note += (run.note.empty() ? "" : "; ") + note;
   run.steps = ms.size();
   run.tSim = static_cast<double>(samples.size() - 1) * scene.dt;
   const std::size_t warm = std::min<std::size_t>(20, scene.steps / 10);

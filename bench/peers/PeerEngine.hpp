@@ -25,6 +25,8 @@ class PeerEngine {
   virtual void step() = 0;
   /// State of body i (scene order) for every body.
   virtual void read(std::vector<BodySample>& out) const = 0;
+  /// Anything the engine reported during the run (e.g. ODE's LCP messages), for the note column.
+  [[nodiscard]] virtual std::string note() const { return {}; }
 };
 
 /// The engines compared (one file each): Coulomb's default (the scene's own settings, solver
