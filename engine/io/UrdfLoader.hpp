@@ -76,7 +76,7 @@ struct UrdfBody {
   std::vector<std::string> fusedLinks;  // other URDF links welded into this body
   std::vector<UrdfCollision> collisions;
   std::vector<std::string> skippedMeshes;  // meshes not loaded (UrdfOptions::loadCollisionMeshes)
-  double jointFriction = 0.0;              // <dynamics friction> [N m or N], kept for friction rows
+  double jointFriction = 0.0;              // <dynamics friction> [N m or N]: joint friction rows
   double effortLimit = 0.0;                // <limit effort>, 0 = none given
   double velocityLimit = 0.0;              // <limit velocity>, 0 = none given
   bool inertiaValid = true;                // mass > 0 and physically valid (SpatialInertia.hpp)
@@ -115,7 +115,8 @@ UrdfModel parseUrdf(const std::string& text, const std::string& source,
 joints::tree::Articulation toArticulation(const UrdfModel& model);
 
 /// The model as a World articulation (World::createArticulation): links with their joints,
-/// inertias (always explicit) and collision shapes; `name` prefixes the link proxies. The root
+/// inertias (always explicit), collision shapes and joint friction (ArticulationLinkDesc::
+/// jointFriction, friction rows); `name` prefixes the link proxies. The root
 /// joint (weld or floating) is placed at UrdfOptions::basePose as loaded. Mimic couplings are not
 /// carried (not enforced yet).
 ArticulationDesc toArticulationDesc(const UrdfModel& model, const std::string& name);

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace coulomb::engine::io {
 namespace {
@@ -64,6 +65,11 @@ UrdfMaximal toMaximal(const UrdfModel& model, const std::string& name,
                       const std::optional<Eigen::VectorXd>& q, const UrdfMaximalOptions& options) {
   const joints::tree::Articulation tree = toArticulation(model);
   const Eigen::VectorXd configuration = q.value_or(tree.neutralConfiguration());
+  try {
+    tree.checkConfiguration(configuration);
+  } catch (const std::invalid_argument& e) {
+    throw CoulombError(model.file + ": robot '" + name + "': " + e.what());
+  }
   const joints::tree::TreeKinematics kin = joints::tree::forwardKinematics(tree, configuration);
   UrdfMaximal out;
   std::vector<std::string> undamped;

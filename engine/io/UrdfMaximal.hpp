@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,12 +47,13 @@ struct UrdfMaximal {
 };
 
 /// `q` (the tree's nq values, nullopt = neutral) places the bodies. Throws CoulombError naming the
-/// joint for a joint type without a maximal form (spherical).
+/// joint for a joint type without a maximal form (spherical), or naming the robot for a bad q.
 UrdfMaximal toMaximal(const UrdfModel& model, const std::string& name,
                       const std::optional<Eigen::VectorXd>& q = std::nullopt,
                       const UrdfMaximalOptions& options = {});
 
-/// The ids of the bodies and joints created in `world`.
+/// Creates the bodies, then the joints, in `world`: their ids. A CoulombError from the World
+/// (it should not happen for a toMaximal result) leaves the bodies created so far.
 struct UrdfMaximalIds {
   std::vector<geometry::BodyId> bodies;
   std::vector<geometry::JointId> joints;

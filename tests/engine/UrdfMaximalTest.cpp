@@ -210,4 +210,17 @@ TEST(UrdfMaximal, OneFileSceneOnAFloor) {  // `coulomb run robot.urdf --maximal 
   }
 }
 
+TEST(UrdfMaximal, BadConfigurationIsNamed) {
+  const UrdfModel model = load("double_pendulum/double_pendulum.urdf");
+  try {
+    (void)engine::io::toMaximal(model, "dp", Eigen::VectorXd::Zero(5));
+    ADD_FAILURE() << "expected an error";
+  } catch (const engine::CoulombError& e) {
+    EXPECT_NE(std::string(e.what()).find("robot 'dp'"), std::string::npos) << e.what();
+  }
+  Eigen::VectorXd nan = Eigen::VectorXd::Zero(2);
+  nan[1] = std::nan("");
+  EXPECT_THROW((void)engine::io::toMaximal(model, "dp", nan), engine::CoulombError);
+}
+
 }  // namespace
