@@ -1,6 +1,7 @@
 #include <coulomb/geometry/NarrowPhase.hpp>
 
 #include <coulomb/geometry/BoxContacts.hpp>
+#include <coulomb/geometry/HullContacts.hpp>
 #include <coulomb/geometry/PrimitiveContacts.hpp>
 
 #include <algorithm>
@@ -84,6 +85,11 @@ int closedForm(const Shape& first, const Pose& p1, const Shape& second, const Po
       if (result == BoxCapsuleResult::AxisInsideBox) return -1;
       return result == BoxCapsuleResult::Touching ? 1 : 0;
     }
+    case kBox * 8 + kHull:  // -1 (FCL) for hulls above kMaxClippedHullVertices
+      return boxHull(std::get<Box>(first), p1, std::get<ConvexHull>(second), p2, margin, out);
+    case kHull * 8 + kHull:
+      return hullHull(std::get<ConvexHull>(first), p1, std::get<ConvexHull>(second), p2, margin,
+                      out);
     case kCapsule * 8 + kCapsule:
       return capsuleCapsule(std::get<Capsule>(first), p1, std::get<Capsule>(second), p2, margin,
                             out);
