@@ -121,8 +121,8 @@ void registerConformanceCommand(CLI::App& app) {
   command->add_option("--cases", options->cases,
                       "Comma-separated case names (default: all; --list shows them)");
   command->add_option("--solvers", options->solvers,
-                      "Comma-separated solvers (default: auto, pgs, bgs, ac_newton, fb_newton, "
-                      "staggered, lemke)");
+                      "Comma-separated solvers (default: auto and each solver alone: pgs!, bgs!, "
+                      "ac_newton!, fb_newton!, staggered!, lemke!)");
   command
       ->add_option("--scale", options->scale,
                    "Run this fraction of each case's SCENES.md duration (default 1)")

@@ -71,7 +71,8 @@ const std::vector<ConformanceCase>& allCases();
 /// The case called `name`; throws CoulombError listing the names if there is none.
 const ConformanceCase& findCase(const std::string& name);
 
-/// The solvers every case is run with for docs/conformance.md (issue 8 item 4).
+/// The solvers every case is run with for docs/conformance.md (issue 8 item 4): auto, then each
+/// solver alone ("pgs!", ...: no fallback).
 const std::vector<std::string>& tableSolvers();
 
 // Case groups, one per file; each appends its cases. Add yours here and in ConformanceCase.cpp.

@@ -178,6 +178,33 @@ TEST_F(CliOutputs, JointDriftIsReportedByRunStatsAndCompare) {
   EXPECT_NE(compare.output.find("joint_gap_m"), std::string::npos) << compare.output;
 }
 
+TEST_F(CliOutputs, ConformanceRunsACaseOncePerSolverAndWritesTheTable) {
+  // sphere_slide (SCENES.md A1) with auto and pgs alone: one row each, both pass, and the Markdown
+  // table has a header and the two rows. An unknown case is named with the known ones.
+  const CommandResult r = runCoulomb(
+      "conformance --cases sphere_slide --solvers auto,pgs! "
+      "--markdown " +
+      path("table.md"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("sphere_slide  auto  pass"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sphere_slide  pgs!  pass"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2 of 2 runs pass"), std::string::npos) << r.output;
+  std::ifstream table(path("table.md"));
+  std::string line;
+  int rows = 0;
+  while (std::getline(table, line))
+    if (line.rfind("| sphere_slide |", 0) == 0) ++rows;
+  EXPECT_EQ(rows, 2);
+
+  const CommandResult list = runCoulomb("conformance --list");
+  ASSERT_EQ(list.status, 0) << list.output;
+  EXPECT_NE(list.output.find("box_incline/C_flat_22.5deg"), std::string::npos) << list.output;
+
+  const CommandResult bad = runCoulomb("conformance --cases sphere_slid");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("no conformance case 'sphere_slid'"), std::string::npos) << bad.output;
+}
+
 TEST_F(CliOutputs, BadSolverNameIsNamedWithNonZeroExit) {
   const std::string scene = writeScene(0.5);
   const CommandResult run = runCoulomb("run " + scene + " --solver no_such_solver --steps 2");
