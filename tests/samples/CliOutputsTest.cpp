@@ -205,6 +205,30 @@ TEST_F(CliOutputs, ConformanceRunsACaseOncePerSolverAndWritesTheTable) {
   EXPECT_NE(bad.output.find("no conformance case 'sphere_slid'"), std::string::npos) << bad.output;
 }
 
+TEST_F(CliOutputs, SnapshotContinuationPrintsTheUninterruptedStateHash) {
+  // 30 steps, save; load and run 30 more: the state hash equals that of 60 steps in one run.
+  const auto hashOf = [](const std::string& output) {
+    const std::size_t at = output.find("state hash ");
+    return at == std::string::npos ? std::string() : output.substr(at + 11, 16);
+  };
+  const std::string snapshot = path("stack.snap");
+  const CommandResult first = runCoulomb("run box_stack_10 --steps 30 --save-snapshot " + snapshot);
+  ASSERT_EQ(first.status, 0) << first.output;
+  const CommandResult resumed =
+      runCoulomb("run box_stack_10 --steps 30 --load-snapshot " + snapshot);
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  const CommandResult whole = runCoulomb("run box_stack_10 --steps 60");
+  ASSERT_EQ(whole.status, 0) << whole.output;
+  ASSERT_FALSE(hashOf(whole.output).empty()) << whole.output;
+  EXPECT_EQ(hashOf(resumed.output), hashOf(whole.output)) << resumed.output;
+  EXPECT_NE(hashOf(first.output), hashOf(whole.output));
+
+  const CommandResult wrongScene =
+      runCoulomb("run pyramid_10 --steps 1 --load-snapshot " + snapshot);
+  EXPECT_NE(wrongScene.status, 0);
+  EXPECT_NE(wrongScene.output.find(snapshot), std::string::npos) << wrongScene.output;
+}
+
 TEST_F(CliOutputs, BadSolverNameIsNamedWithNonZeroExit) {
   const std::string scene = writeScene(0.5);
   const CommandResult run = runCoulomb("run " + scene + " --solver no_such_solver --steps 2");
