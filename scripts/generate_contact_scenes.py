@@ -12,6 +12,9 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_json import write_scene  # noqa: E402
+
 G = 9.81
 
 
@@ -146,21 +149,7 @@ def box_pile_1000():
 
 
 def write(directory, document):
-    # One body per line: readable diffs, and small enough for the embedded string table.
-    lines = ["{"]
-    for key in ("name", "description", "time_step", "steps", "materials"):
-        lines.append(f"  {json.dumps(key)}: {json.dumps(document[key])},")
-    lines.append('  "bodies": [')
-    bodies = document["bodies"]
-    for index, body in enumerate(bodies):
-        comma = "," if index + 1 < len(bodies) else ""
-        lines.append(f"    {json.dumps(body)}{comma}")
-    lines.append("  ]")
-    lines.append("}")
-    path = os.path.join(directory, document["name"] + ".json")
-    with open(path, "w", encoding="utf-8") as out:
-        out.write("\n".join(lines) + "\n")
-    print(f"wrote {path} ({len(bodies)} bodies, {document['steps']} steps)")
+    write_scene(document, directory)
 
 
 def main():

@@ -13,6 +13,9 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_json import write_scene  # noqa: E402
+
 
 def rot_y(angle):
     """Quaternion [w, x, y, z] of R_y(angle) (SCENES.md section 0): x -> (cos a, 0, -sin a)."""
@@ -97,22 +100,7 @@ def painleve_rod(mu, file_name):
 
 
 def write(directory, document):
-    # One body per line, as generate_contact_scenes.py writes them.
-    lines = ["{"]
-    for key in ("name", "description", "time_step", "steps", "materials", "solver"):
-        if key in document:
-            lines.append(f"  {json.dumps(key)}: {json.dumps(document[key])},")
-    lines.append('  "bodies": [')
-    bodies = document["bodies"]
-    for index, body in enumerate(bodies):
-        comma = "," if index + 1 < len(bodies) else ""
-        lines.append(f"    {json.dumps(body)}{comma}")
-    lines.append("  ]")
-    lines.append("}")
-    path = os.path.join(directory, document["name"] + ".json")
-    with open(path, "w", encoding="utf-8") as out:
-        out.write("\n".join(lines) + "\n")
-    print(f"wrote {path}")
+    write_scene(document, directory)
 
 
 def main():

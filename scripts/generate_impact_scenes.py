@@ -12,6 +12,9 @@ import json
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_json import write_scene  # noqa: E402
+
 
 def box_inertia(h, m):
     """SCENES.md 'box(h, m)': cube of half side h, I = m 8 h^2 / 12 on every axis."""
@@ -86,22 +89,7 @@ def newton_cradle():
 
 
 def write(directory, document):
-    # One body per line: readable diffs, and small enough for the embedded string table.
-    lines = ["{"]
-    keys = [k for k in document if k != "bodies"]
-    for key in keys:
-        lines.append(f"  {json.dumps(key)}: {json.dumps(document[key])},")
-    lines.append('  "bodies": [')
-    bodies = document["bodies"]
-    for index, body in enumerate(bodies):
-        comma = "," if index + 1 < len(bodies) else ""
-        lines.append(f"    {json.dumps(body)}{comma}")
-    lines.append("  ]")
-    lines.append("}")
-    path = os.path.join(directory, document["name"] + ".json")
-    with open(path, "w", encoding="utf-8") as out:
-        out.write("\n".join(lines) + "\n")
-    print(f"wrote {path} ({len(bodies)} bodies, {document['steps']} steps)")
+    write_scene(document, directory)
 
 
 def main():
