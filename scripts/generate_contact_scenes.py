@@ -7,7 +7,6 @@ and written with repr(), which round-trips exactly, so bodies placed exactly tou
 
 Usage: python3 scripts/generate_contact_scenes.py [output_dir]   (default: samples/scenes)
 """
-import json
 import math
 import os
 import sys

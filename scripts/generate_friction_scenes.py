@@ -8,7 +8,6 @@ generate_double_loop.py.)
 
 Usage: python3 scripts/generate_friction_scenes.py [output_dir]   (default: samples/scenes)
 """
-import json
 import math
 import os
 import sys

@@ -8,7 +8,6 @@ and the mass_ratio boxes overlap by 2.8e-17 m, exactly as in the peers' runs.
 
 Usage: python3 scripts/generate_impact_scenes.py [output_dir]   (default: samples/scenes)
 """
-import json
 import os
 import sys
 
