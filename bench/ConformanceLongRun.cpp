@@ -4,6 +4,7 @@
 //   ConformanceLongRun --list
 // One line per case and solver: verdict, metric, ms/step, residual, iterations, fallbacks and the
 // case's detail line. Exit status 1 if any run failed or threw.
+#include "CommaList.hpp"
 #include "conformance/ConformanceCase.hpp"
 
 #include <coulomb/engine/CoulombError.hpp>
@@ -18,14 +19,6 @@
 using namespace coulomb;
 
 namespace {
-
-std::vector<std::string> splitCommas(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  for (std::string part; std::getline(stream, part, ',');)
-    if (!part.empty()) parts.push_back(part);
-  return parts;
-}
 
 int usage() {
   std::fprintf(stderr, "usage: ConformanceLongRun [--solvers a,b] [--scale X] CASE... | --list\n");
@@ -48,7 +41,7 @@ int main(int argc, char** argv) {
     }
     if ((arg == "--solvers" || arg == "--scale") && i + 1 >= argc) return usage();
     if (arg == "--solvers") {
-      solvers = splitCommas(argv[++i]);
+      solvers = coulomb::samples::splitCommaList(argv[++i]);
     } else if (arg == "--scale") {
       char* end = nullptr;
       scale = std::strtod(argv[++i], &end);

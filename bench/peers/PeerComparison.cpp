@@ -5,6 +5,7 @@
 // Every step is timed alone (steady clock; collision + solve + integration, reading the state
 // excluded); ms/step is the median after min(20, steps/10) warm-up steps. A run stops when its
 // summed step time passes the cap or a body leaves |x| <= 1000 m, |v| <= 1000 m/s (SCENES.md 0).
+#include "CommaList.hpp"
 #include "PeerEngine.hpp"
 #include "PeerMetrics.hpp"
 
@@ -44,14 +45,6 @@ const std::map<std::string, std::pair<std::string, Factory>>& engines() {
       {"ode_quickstep", {"ode quickstep", [](const PeerScene& s) { return makeOde(s, true); }}},
       {"ode_step", {"ode dworldstep", [](const PeerScene& s) { return makeOde(s, false); }}}};
   return all;
-}
-
-std::vector<std::string> splitCommas(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  for (std::string part; std::getline(stream, part, ',');)
-    if (!part.empty()) parts.push_back(part);
-  return parts;
 }
 
 std::string fmt(double v) {
@@ -204,9 +197,9 @@ int main(int argc, char** argv) {
     if (i + 1 >= argc) return usage();
     const std::string value = argv[++i];
     if (arg == "--scenes") {
-      scenes = splitCommas(value);
+      scenes = coulomb::samples::splitCommaList(value);
     } else if (arg == "--engines") {
-      names = splitCommas(value);
+      names = coulomb::samples::splitCommaList(value);
     } else if (arg == "--time-cap") {
       cap = std::strtod(value.c_str(), nullptr);
       if (!(cap > 0)) return usage();

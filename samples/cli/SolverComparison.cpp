@@ -1,5 +1,7 @@
 #include "SolverComparison.hpp"
 
+#include "CommaList.hpp"
+
 #include <cstdio>
 #include <sstream>
 
@@ -38,12 +40,7 @@ ComparisonRow runForComparison(const engine::io::Scene& scene, double timeCapSec
 }
 
 std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::string item;
-  std::istringstream in(text);
-  while (std::getline(in, item, ','))
-    if (!item.empty()) items.push_back(item);
-  return items;
+  return samples::splitCommaList(text);
 }
 
 void printComparisonHeader(std::ostream& out) {
