@@ -69,14 +69,6 @@ double maxGap(const Chain& chain) {
   return gap;
 }
 
-double energy(const engine::World& world) {
-  const geometry::BodyState& s = world.state();
-  double e = 0.0;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.isDynamic(i)) e += s.kineticEnergy(i) + kG * s.poses[i].position.z() / s.inverseMasses[i];
-  return e;
-}
-
 // Args: links, solver index, policy index, 1/dt.
 void BM_Chain(benchmark::State& state) {
   const int links = static_cast<int>(state.range(0));
@@ -97,7 +89,7 @@ void BM_Chain(benchmark::State& state) {
   }
   const double released = 0.1 * kG * 0.1 * links * links / 2.0;
   state.counters["max_gap"] = gap;
-  state.counters["drift_end"] = energy(chain.world) / released;
+  state.counters["drift_end"] = chain.world.mechanicalEnergy() / released;
   state.counters["corr_iters"] =
       correctionSolves / static_cast<double>(std::max<std::int64_t>(steps, 1));
   state.SetLabel(std::string(solver) + " " + joints::stabilizationMethodName(policy) + " dt " +

@@ -229,6 +229,16 @@ void World::setGravity(const Eigen::Vector3d& gravity) {
   settings_.gravity = gravity;
 }
 
+double World::mechanicalEnergy() const {
+  double energy = 0.0;
+  for (std::size_t i = 0; i < state_.size(); ++i) {
+    if (!state_.isDynamic(i) || !(state_.inverseMasses[i] > 0.0)) continue;
+    energy += state_.kineticEnergy(i) -
+              settings_.gravity.dot(state_.poses[i].position) / state_.inverseMasses[i];
+  }
+  return energy;
+}
+
 std::uint64_t World::stateHash() const {
   return geometry::stateHash(state_);
 }

@@ -83,6 +83,10 @@ class World {
   void setGravity(const Eigen::Vector3d& gravity);
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] std::uint64_t stepCount() const { return stepCount_; }
+  /// Mechanical energy of the dynamic bodies [J]: sum of 1/2 m v^2 + 1/2 w^T I w - m g.p in the
+  /// world's gravity (datum at the origin). A conservative step keeps it; `coulomb compare`, the
+  /// conformance cases and the joint tests report its change.
+  [[nodiscard]] double mechanicalEnergy() const;
   /// Hash of every body's pose and velocities (bit patterns): equal across identical runs.
   [[nodiscard]] std::uint64_t stateHash() const;
   /// True once the World-level guard isolated the body (engine/Quarantine.hpp); throws for a
@@ -112,7 +116,9 @@ class World {
   [[nodiscard]] bool contains(geometry::JointId id) const { return joints_.contains(id); }
   [[nodiscard]] std::size_t jointCount() const { return joints_.count(); }
   /// The joint as stored (frames in the bodies' COM frames); throws for a stale id.
-  [[nodiscard]] const joints::JointDef& joint(geometry::JointId id) const { return joints_.def(id); }
+  [[nodiscard]] const joints::JointDef& joint(geometry::JointId id) const {
+    return joints_.def(id);
+  }
   /// Average force and torque the joint applied to body B over the last step.
   [[nodiscard]] const JointReaction& jointReaction(geometry::JointId id) const {
     return joints_.reaction(id);

@@ -72,18 +72,6 @@ double SolverTally::meanResidual() const {
   return islands > 0 ? residualSum / static_cast<double>(islands) : 0.0;
 }
 
-double mechanicalEnergy(const engine::World& world) {
-  const geometry::BodyState& s = world.state();
-  const Eigen::Vector3d& g = world.settings().gravity;
-  double energy = 0.0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!s.isDynamic(i)) continue;
-    const double mass = 1.0 / s.inverseMasses[i];
-    energy += s.kineticEnergy(i) - mass * g.dot(s.poses[i].position);
-  }
-  return energy;
-}
-
 bool hasDiverged(const engine::World& world) {
   constexpr double kLimit = 1000.0;  // [m] and [m/s], SCENES.md section 0
   const geometry::BodyState& s = world.state();
@@ -102,7 +90,7 @@ RunMetrics::RunMetrics(const engine::World& world) {
   const geometry::BodyState& s = world.state();
   startPositions_.resize(s.size());
   for (std::size_t i = 0; i < s.size(); ++i) startPositions_[i] = s.poses[i].position;
-  initialEnergy_ = finalEnergy_ = mechanicalEnergy(world);
+  initialEnergy_ = finalEnergy_ = world.mechanicalEnergy();
 }
 
 void RunMetrics::observe(const engine::World& world, const engine::StepReport& report,
@@ -137,7 +125,7 @@ void RunMetrics::observe(const engine::World& world, const engine::StepReport& r
   for (std::size_t i = 0; i < s.size() && i < startPositions_.size(); ++i)
     if (s.isDynamic(i))
       maxDrift_ = std::max(maxDrift_, (s.poses[i].position - startPositions_[i]).norm());
-  const double energy = mechanicalEnergy(world);
+  const double energy = world.mechanicalEnergy();
   maxEnergyIncrease_ = std::max(maxEnergyIncrease_, energy - finalEnergy_);
   finalEnergy_ = energy;
 }

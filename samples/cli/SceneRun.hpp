@@ -55,9 +55,6 @@ struct SolverTally {
   [[nodiscard]] double meanResidual() const;
 };
 
-/// Total mechanical energy: kinetic + gravitational potential -m g.x of the dynamic bodies [J].
-double mechanicalEnergy(const engine::World& world);
-
 /// The measurements of a run. observe() is called after building (step report absent) and after
 /// every step; nothing in it is timed.
 class RunMetrics {

@@ -31,15 +31,6 @@ double kineticEnergy(const engine::World& world) {
   return energy;
 }
 
-double totalEnergy(const engine::World& world) {
-  const geometry::BodyState& state = world.state();
-  double energy = kineticEnergy(world);
-  for (std::size_t i = 0; i < state.size(); ++i)
-    if (state.isDynamic(i) && state.inverseMasses[i] > 0.0)
-      energy -= world.settings().gravity.dot(state.poses[i].position) / state.inverseMasses[i];
-  return energy;
-}
-
 namespace {
 
 // Lowest z of one shape at world pose `pose` (support point in -z).

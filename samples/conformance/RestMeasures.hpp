@@ -27,8 +27,6 @@ class DisplacementTracker {
   double max_ = 0.0;
 };
 
-/// [J] sum over dynamic bodies of 1/2 m v^2 + 1/2 w^T I w - m g.p (SCENES.md B1 invariant).
-double totalEnergy(const engine::World& world);
 /// [J] kinetic energy of the dynamic bodies.
 double kineticEnergy(const engine::World& world);
 /// [m] lowest z of any shape of a dynamic body (box corners, hull vertices, sphere, capsule).

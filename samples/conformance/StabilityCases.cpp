@@ -47,7 +47,7 @@ CaseRun runResting(const std::string& scene, const CaseOptions& options) {
   engine::World world = buildCaseWorld(scene, options);
   DisplacementTracker tracker(world);
   RunRecorder recorder;
-  const double start = totalEnergy(world);
+  const double start = world.mechanicalEnergy();
   const double tolerance = totalMass(world) * world.settings().gravity.norm() * kRestingLift;
   double previous = start;
   double riseAboveStart = 0.0;
@@ -58,7 +58,7 @@ CaseRun runResting(const std::string& scene, const CaseOptions& options) {
     recorder.step(world);
     finite = stateFinite(world);
     tracker.sample(world);
-    const double energy = totalEnergy(world);
+    const double energy = world.mechanicalEnergy();
     riseAboveStart = std::max(riseAboveStart, energy - start);
     stepRise = std::max(stepRise, energy - previous);
     previous = energy;
@@ -79,7 +79,7 @@ CaseRun runResting(const std::string& scene, const CaseOptions& options) {
 CaseRun runPile(const CaseOptions& options) {
   engine::World world = buildCaseWorld("box_pile_1000", options);
   RunRecorder recorder;
-  const double start = totalEnergy(world);
+  const double start = world.mechanicalEnergy();
   double previous = start;
   double riseAboveStart = 0.0;
   double stepRise = 0.0;
@@ -94,7 +94,7 @@ CaseRun runPile(const CaseOptions& options) {
     finite = stateFinite(world);
     if (!finite) break;
     lowest = std::min(lowest, lowestDynamicPoint(world));
-    const double energy = totalEnergy(world);
+    const double energy = world.mechanicalEnergy();
     riseAboveStart = std::max(riseAboveStart, energy - start);
     stepRise = std::max(stepRise, energy - previous);
     previous = energy;

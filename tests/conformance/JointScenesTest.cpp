@@ -58,15 +58,6 @@ double maxGap(const engine::World& world, std::size_t joints) {
   return gap;
 }
 
-/// E = sum 1/2 m v^2 + 1/2 w^T I_w w + m g z [J] (datum z = 0).
-double energy(const engine::World& world) {
-  const geometry::BodyState& s = world.state();
-  double e = 0.0;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.isDynamic(i)) e += s.kineticEnergy(i) + kG * s.poses[i].position.z() / s.inverseMasses[i];
-  return e;
-}
-
 Eigen::Vector3d point(const engine::World& world, const char* body, const Eigen::Vector3d& local) {
   return world.pose(world.findBody(body)).apply(local);
 }
@@ -106,7 +97,7 @@ TEST(JointScenes, PendulumStaysClosedAndSwingsWithTheEllipticPeriod) {
     if ((x < 0) != (previousX < 0)) crossings.push_back(h * (k - 1 + previousX / (previousX - x)));
     previousX = x;
     gap = std::max(gap, maxGap(scene.world, scene.joints));
-    drift = std::max(drift, std::abs(energy(scene.world)) / kG);  // over m g l = 9.81 J
+    drift = std::max(drift, std::abs(scene.world.mechanicalEnergy()) / kG);  // over m g l = 9.81 J
   }
   const double periodError = periodFrom(crossings) / kPeriod - 1.0;
   std::printf("pendulum dt 0.01: max gap %.2e m, period_rel_err %.2e, energy_drift_maxabs %.2e\n",
@@ -123,10 +114,10 @@ TEST(JointScenes, DoublePendulumStaysClosedAndKeepsItsEnergy) {
   for (int k = 1; k <= 1000; ++k) {
     scene.world.step();
     gap = std::max(gap, maxGap(scene.world, scene.joints));
-    drift = std::max(drift, std::abs(energy(scene.world)) / 9.81);
+    drift = std::max(drift, std::abs(scene.world.mechanicalEnergy()) / 9.81);
   }
   std::printf("double_pendulum dt 0.01: max gap %.2e m, energy_drift_maxabs %.2e, end %.2e\n", gap,
-              drift, energy(scene.world) / 9.81);
+              drift, scene.world.mechanicalEnergy() / 9.81);
   EXPECT_LT(gap, 1e-4);
   EXPECT_LT(drift, 0.2);
 }
@@ -169,7 +160,7 @@ FourBarRun runFourBar(const std::string& name, int steps) {
         std::max(run.theta4Error, std::abs(wrappedDifference(theta4, openBranchTheta4(theta2))));
     run.loopGap = std::max(run.loopGap, maxGap(scene.world, scene.joints));
   }
-  run.energyDrift = (energy(scene.world) - kE0) / kE0;
+  run.energyDrift = (scene.world.mechanicalEnergy() - kE0) / kE0;
   std::printf("%s dt 0.01, %d steps: theta4_err %.2e rad, max_loop_gap %.2e m, energy_drift %.2e\n",
               name.c_str(), steps, run.theta4Error, run.loopGap, run.energyDrift);
   return run;
@@ -207,7 +198,7 @@ TEST(JointScenes, ChainsStayConnected) {
       gap = std::max(gap, g);
       gapSum += g;
     }
-    const double drift = energy(scene.world) / released;
+    const double drift = scene.world.mechanicalEnergy() / released;
     std::printf(
         "%s dt 0.01, %d steps: max_joint_gap %.2e m, mean of max gap %.2e, "
         "energy_drift_end %.3f\n",

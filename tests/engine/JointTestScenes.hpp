@@ -55,17 +55,6 @@ inline engine::JointDesc rotatedFrames(engine::JointDesc d, const Eigen::Quatern
   return d;
 }
 
-/// E = sum 1/2 m v^2 + 1/2 w^T I_w w + m g z over the world's dynamic bodies [J].
-inline double totalEnergy(const engine::World& world) {
-  const geometry::BodyState& s = world.state();
-  double e = 0.0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!s.isDynamic(i)) continue;
-    e += s.kineticEnergy(i) + kG * s.poses[i].position.z() / s.inverseMasses[i];
-  }
-  return e;
-}
-
 /// Largest distance between the world anchors of every joint of the world.
 inline double maxAnchorGap(const engine::World& world, const std::vector<geometry::JointId>& ids) {
   double gap = 0.0;

@@ -35,7 +35,7 @@ ChainFigures runChain(int links, double h, double seconds, joints::Stabilization
     scene.world.step(h);
     f.maxGap = std::max(f.maxGap, maxAnchorGap(scene.world, scene.joints));
   }
-  f.energyDriftEnd = totalEnergy(scene.world) / scale;
+  f.energyDriftEnd = scene.world.mechanicalEnergy() / scale;
   return f;
 }
 
@@ -82,7 +82,7 @@ TEST(WorldJoint, PendulumPeriodAtNinetyDegrees) {
         crossings.push_back(0.01 * (k - 1) + 0.01 * previousX / (previousX - x));
       previousX = x;
       maxGap = std::max(maxGap, maxAnchorGap(scene.world, scene.joints));
-      maxDrift = std::max(maxDrift, std::abs(totalEnergy(scene.world)) / 9.81);
+      maxDrift = std::max(maxDrift, std::abs(scene.world.mechanicalEnergy()) / 9.81);
     }
     ASSERT_GE(crossings.size(), 3u);
     double period = 0.0;
@@ -133,7 +133,7 @@ TEST(WorldJoint, DoublePendulumModesAndEnergy) {
   double maxDrift = 0.0, maxGap = 0.0;
   for (int k = 0; k < 1000; ++k) {
     scene.world.step(0.01);
-    maxDrift = std::max(maxDrift, std::abs(totalEnergy(scene.world)) / 9.81);
+    maxDrift = std::max(maxDrift, std::abs(scene.world.mechanicalEnergy()) / 9.81);
     maxGap = std::max(maxGap, maxAnchorGap(scene.world, scene.joints));
   }
   std::printf("double pendulum release_horizontal: energy_drift_maxabs %.3g max_gap %.3g\n",

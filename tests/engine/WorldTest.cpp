@@ -126,3 +126,23 @@ TEST(World, StateHashIsReproducible) {
   };
   EXPECT_EQ(run(), run());
 }
+
+TEST(World, MechanicalEnergyIsKineticPlusPotentialOfTheDynamicBodies) {
+  // m = 2 kg at (1, 2, 3) m, v = (1, 0, 0) m/s, w = (0, 0, 2) rad/s about a principal axis with
+  // I_z = 0.3 kg m^2: E = 1/2 2 1 + 1/2 0.3 4 + 2 9.81 3 = 60.46 J; a static body adds nothing.
+  engine::World world;
+  BodyDesc desc;
+  desc.pose = geometry::Pose::translation({1.0, 2.0, 3.0});
+  desc.linearVelocity = Eigen::Vector3d(1.0, 0.0, 0.0);
+  desc.angularVelocity = Eigen::Vector3d(0.0, 0.0, 2.0);
+  desc.mass = geometry::SpatialInertia{2.0, Eigen::Vector3d::Zero(),
+                                       Eigen::Vector3d(0.1, 0.2, 0.3).asDiagonal()};
+  world.createBody(desc);
+  BodyDesc wall = ball("wall", Eigen::Vector3d(0.0, 0.0, 50.0));
+  wall.motionType = geometry::MotionType::Static;
+  world.createBody(wall);
+  EXPECT_NEAR(world.mechanicalEnergy(), 60.46, 1e-12);
+  // Gravity along -y: the potential is -m g.p = 2 * 5 * 2 = 20 J.
+  world.setGravity(Eigen::Vector3d(0.0, -5.0, 0.0));
+  EXPECT_NEAR(world.mechanicalEnergy(), 1.6 + 20.0, 1e-12);
+}
