@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
+#include "SceneErrorTestHelpers.hpp"
 
 #include <Eigen/Geometry>
 
@@ -29,17 +30,8 @@ std::string twoBodies(const std::string& joints, const std::string& extra = "") 
 }
 
 std::string errorOf(const std::string& text, bool build = false) {
-  try {
-    const engine::io::Scene scene = parseScene(text, "test.json");
-    if (build) engine::io::buildWorld(scene);
-  } catch (const engine::CoulombError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::sceneErrorOf(text, build);
 }
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
 
 struct WorldFrame {
   Eigen::Vector3d anchor, axis, normal;
