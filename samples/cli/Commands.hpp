@@ -20,5 +20,6 @@ void registerUrdfCommands(CLI::App& app);        // urdf info, dynamics  (UrdfCo
 void registerCompareCommand(CLI::App& app);      // compare              (CompareCommand.cpp)
 void registerBenchCommand(CLI::App& app);        // bench                (BenchCommand.cpp)
 void registerConformanceCommand(CLI::App& app);  // conformance    (ConformanceCommand.cpp)
+void registerViewCommands(CLI::App& app);        // view, render         (ViewCommands.cpp)
 
 }  // namespace coulomb::cli

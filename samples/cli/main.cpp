@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   coulomb::cli::registerCompareCommand(app);
   coulomb::cli::registerBenchCommand(app);
   coulomb::cli::registerConformanceCommand(app);
+  coulomb::cli::registerViewCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
