@@ -1,5 +1,7 @@
 #include <coulomb/geometry/CollisionPipeline.hpp>
 
+#include <coulomb/geometry/ChainContacts.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -90,6 +92,7 @@ const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Co
   fresh_.clear();
   narrowPhase_.collide(pairs, colliders, shapePoses_, bodyPoses, scene_, fresh_,
                        diagnostics_.failures);
+  dropCoveredCapsuleEnds(colliders, shapePoses_, fresh_);  // ghost points of capsule chains
 
   diagnostics_.stats.candidatePairs = pairs.size();
   diagnostics_.stats.touchingPairs = fresh_.size();

@@ -1,7 +1,9 @@
 #pragma once
 // Manifolds that persist from step to step. Each new point takes over the impulses of the old
 // point it matches (same feature id, else the nearest old anchor within `matchDistance`), so the
-// solver can warm start. Plain data: a snapshot saves manifolds() and restore() puts it back.
+// solver can warm start; a one-point manifold of a new collider pair takes over an ended one of the
+// same bodies and one common collider (a ball rolling from capsule to capsule of a rail). Plain
+// data: a snapshot saves manifolds() and restore() puts it back.
 #include <coulomb/geometry/ContactManifold.hpp>
 #include <coulomb/geometry/Pose.hpp>
 
@@ -34,6 +36,12 @@ class ContactCache {
   void clear() { manifolds_.clear(); }
 
  private:
+  /// Warm start of one-point manifolds whose collider pair is new (`orphans`, indices into
+  /// `fresh`) from an ended one-point manifold of the same two bodies sharing one collider, with
+  /// the closest normal (at least normalAgreement).
+  void handOver(std::vector<ContactManifold>& fresh, std::span<const std::size_t> orphans,
+                const std::vector<char>& continued) const;
+
   ContactCacheSettings settings_;
   std::vector<ContactManifold> manifolds_;
 };

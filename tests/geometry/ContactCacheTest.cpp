@@ -78,11 +78,61 @@ TEST(ContactCache, SortedByCollidersAndPairsNeverMix) {
   refresh(cache, {manifold(3, 4, {1}), manifold(1, 2, {1})});
   cache.manifolds()[0].points[0].normalImpulse = 12.0;  // pair (1,2)
   cache.manifolds()[1].points[0].normalImpulse = 34.0;  // pair (3,4)
-  const auto& out = refresh(cache, {manifold(3, 4, {1}), manifold(1, 5, {1})});
+  auto other = manifold(1, 5, {1});
+  other.bodyB = {2, 0};  // another body: no hand-over from (1,2) either
+  const auto& out = refresh(cache, {manifold(3, 4, {1}), other});
   ASSERT_EQ(out.size(), 2u);
   EXPECT_EQ(out[0].colliderB.index, 5u);
   EXPECT_DOUBLE_EQ(out[0].points[0].normalImpulse, 0.0);
   EXPECT_DOUBLE_EQ(out[1].points[0].normalImpulse, 34.0);
+}
+
+// A ball rolling from capsule 2 onto capsule 5 of the same rail body: the new one-point manifold
+// takes over the ended one's impulses, the tangent impulse re-expressed in the new tangent frame.
+TEST(ContactCache, HandsOverAnEndedOnePointManifoldOfTheSameBodies) {
+  ContactCache cache;
+  auto first = manifold(1, 2, {0});
+  first.normal = Eigen::Vector3d(0.3, 0.2, 0.9).normalized();
+  makeTangentFrame(first.normal, first.tangent1, first.tangent2);
+  refresh(cache, {first});
+  cache.manifolds()[0].points[0].normalImpulse = 2.0;
+  cache.manifolds()[0].points[0].tangentImpulse = {0.5, -0.25};
+  const Eigen::Vector3d world = 0.5 * first.tangent1 - 0.25 * first.tangent2;
+  auto next = manifold(1, 5, {0});
+  next.normal = Eigen::Vector3d(0.32, 0.2, 0.9).normalized();  // 1.2 degrees further on
+  makeTangentFrame(next.normal, next.tangent1, next.tangent2);
+  auto far = manifold(1, 6, {0});  // the other rail: its normal is 54 degrees away
+  far.normal = Eigen::Vector3d(-0.3, 0.2, 0.9).normalized();
+  makeTangentFrame(far.normal, far.tangent1, far.tangent2);
+  const auto& out = refresh(cache, {next, far});
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_TRUE(out[0].points[0].warmStarted);
+  EXPECT_DOUBLE_EQ(out[0].points[0].normalImpulse, 2.0);
+  const Eigen::Vector3d carried = out[0].points[0].tangentImpulse.x() * next.tangent1 +
+                                  out[0].points[0].tangentImpulse.y() * next.tangent2;
+  // The tangent part of the old world impulse that lies in the new tangent plane.
+  EXPECT_NEAR((carried - (world - world.dot(next.normal) * next.normal)).norm(), 0.0, 1e-12);
+  EXPECT_FALSE(out[1].points[0].warmStarted);
+  EXPECT_DOUBLE_EQ(out[1].points[0].normalImpulse, 0.0);
+}
+
+// Where n_z changes sign the tangent frame (Duff et al.) flips: the warm start follows the world
+// direction, not the frame's coefficients.
+TEST(ContactCache, RotatesTheTangentImpulseIntoTheNewFrame) {
+  ContactCache cache;
+  auto before = manifold(1, 2, {0});
+  before.normal = Eigen::Vector3d(1.0, 0.0, 1e-3).normalized();
+  makeTangentFrame(before.normal, before.tangent1, before.tangent2);
+  refresh(cache, {before});
+  cache.manifolds()[0].points[0].tangentImpulse = {1.0, 0.0};
+  auto after = manifold(1, 2, {0});
+  after.normal = Eigen::Vector3d(1.0, 0.0, -1e-3).normalized();
+  makeTangentFrame(after.normal, after.tangent1, after.tangent2);
+  ASSERT_LT(after.tangent1.dot(before.tangent1), 0.0);  // the frame did flip
+  const auto& out = refresh(cache, {after});
+  const Eigen::Vector3d carried = out[0].points[0].tangentImpulse.x() * after.tangent1 +
+                                  out[0].points[0].tangentImpulse.y() * after.tangent2;
+  EXPECT_GT(carried.dot(before.tangent1), 0.999);
 }
 
 TEST(ContactCache, SnapshotRestoreRoundTrips) {
