@@ -2,10 +2,12 @@
 #include <coulomb/engine/JointStage.hpp>
 #include <coulomb/integrators/PredictedStateCorrection.hpp>
 #include <coulomb/joints/EmitRows.hpp>
+#include <coulomb/joints/GeometricStiffness.hpp>
 #include <coulomb/joints/JointConstraint.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 
 namespace coulomb::engine {
 namespace {
@@ -153,6 +155,37 @@ void JointStage::storeImpulses(const joints::RowSet& rows, std::size_t jointBloc
     r.warmStarts[block.sourceKey & 0xff] = impulse;
     r.impulseOnB += block.jacobianB.transpose() * impulse;
   }
+}
+
+void JointStage::stiffenLoadedBodies(geometry::BodyState& state, double h) {
+  stiffened_.clear();
+  std::map<std::uint32_t, Eigen::Matrix3d> stiffness;  // by body index: deterministic order
+  const auto add = [&](const geometry::BodyId& id, const Eigen::Vector3d& force,
+                       const Eigen::Vector3d& anchor) {
+    if (!id.valid() || !state.isDynamic(id.index)) return;
+    const Eigen::Vector3d arm = state.poses[id.index].rotation * anchor;
+    auto [it, inserted] = stiffness.try_emplace(id.index, Eigen::Matrix3d::Zero());
+    it->second += joints::rotationalGeometricStiffness(force, arm);
+  };
+  for (const Record& r : records_) {
+    if (!r.alive || r.broken || r.reaction.force.isZero(0.0)) continue;
+    add(r.def.bodyA, -r.reaction.force, r.def.frameA.anchor);  // the joint's force on A
+    add(r.def.bodyB, r.reaction.force, r.def.frameB.anchor);
+  }
+  for (const auto& [body, k] : stiffness) {
+    const Eigen::Quaterniond toPrincipal = state.poses[body].rotation * state.principalFrames[body];
+    const Eigen::Matrix3d r = toPrincipal.toRotationMatrix();
+    const Eigen::Matrix3d inertia = r * state.principalMoments[body].asDiagonal() * r.transpose();
+    const Eigen::Matrix3d stable = joints::stabilizingInertia(inertia, k, h);
+    if (stable == inertia) continue;
+    state.worldInverseInertias[body] = stable.inverse();
+    stiffened_.push_back(body);
+  }
+}
+
+void JointStage::restoreInertias(geometry::BodyState& state) {
+  for (const std::uint32_t body : stiffened_) state.refreshWorldInertia(body);
+  stiffened_.clear();
 }
 
 void JointStage::correctDrift(geometry::BodyState& state, const joints::Stabilization& worldPolicy,

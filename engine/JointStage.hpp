@@ -56,6 +56,13 @@ class JointStage {
   /// step's warm start and accumulated into the reaction.
   void storeImpulses(const joints::RowSet& rows, std::size_t jointBlocks,
                      const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda);
+  /// Before the velocity solve: every dynamic body whose joint forces (the last step's reactions)
+  /// would make the explicit step unstable gets the inverse of joints::stabilizingInertia as its
+  /// world inverse inertia, with which the velocity problem is assembled and its impulses applied;
+  /// restoreInertias() puts the true ones back before the predicted-state correction (which
+  /// measured better with the true inertia: SHAKE then stalls on fewer steps).
+  void stiffenLoadedBodies(geometry::BodyState& state, double h);
+  void restoreInertias(geometry::BodyState& state);
   /// Predicted-state correction of every active joint whose policy is PredictedState.
   void correctDrift(geometry::BodyState& state, const joints::Stabilization& worldPolicy, double h,
                     JointStepReport& report);
@@ -82,6 +89,7 @@ class JointStage {
   std::vector<std::uint32_t> freeSlots_;
   std::vector<std::uint32_t> edgeJoints_;  // joint slot of each appended edge
   std::size_t firstEdge_ = 0;              // index of the first joint edge of this step
+  std::vector<std::uint32_t> stiffened_;   // bodies given a stabilizing inertia this step
 };
 
 }  // namespace coulomb::engine

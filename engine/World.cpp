@@ -271,11 +271,13 @@ StepReport World::step(double h) {
   articulations_.appendConstraintEdges(edges, h);  // tree joint limits and loop closures
   articulations_.mapEdges(edges);                  // a tree is one unit (its root link's proxy)
   const std::vector<Island> islands = islandBuilder_.build(dynamicMask(), edges);
+  joints_.stiffenLoadedBodies(state_, h);  // geometric stiffness of heavy joint loads
   std::vector<joints::RowSet> rows(islands.size());
   std::vector<std::vector<ContactRowSource>> sources(islands.size());
   std::vector<VelocityProblemNormals> normals(islands.size());  // W_NN for the split impulse
   for (std::size_t k = 0; k < islands.size(); ++k)              // v* -> v+
     report.islands.push_back(solveIsland(islands[k], h, rows[k], sources[k], normals[k]));
+  joints_.restoreInertias(state_);                                               // true inertia
   joints_.correctDrift(state_, settings_.jointStabilization, h, report.joints);  // predicted state
   integrators::integratePositions(state_, h);                                    // x+ from v+
   articulations_.integratePositions(h, state_);            // q+ from qd+; link proxies follow

@@ -76,9 +76,6 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
       const geometry::BodyId& id = sideB ? joints[j]->bodyB : joints[j]->bodyA;
       if (dynamicBody(state, id)) touches[id.index].push_back({j, sideB});
     }
-  const auto jac = [&](const BodyTouch& t) -> const joints::RowJacobian& {
-    return t.sideB ? start[t.joint].jacobianB : start[t.joint].jacobianA;
-  };
   const auto inverseMassTimesJt = [&](std::uint32_t body, const joints::RowJacobian& J) {
     Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> out(6, J.rows());
     out.topRows<3>() = state.inverseMasses[body] * J.leftCols<3>().transpose();
@@ -87,14 +84,18 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
   };
   // B = J_row M^-1 J_n^T: with J_row = J_n it is Bender's symmetric A; with J_row the Jacobian
   // at the predicted state it is the Newton matrix of p -> C(x(t+h; p)) (times 1/h).
-  const auto assemble = [&](const std::vector<joints::ConstraintEval>& rowsAt) {
+  const auto side = [](const std::vector<joints::ConstraintEval>& at,
+                       const BodyTouch& t) -> const joints::RowJacobian& {
+    return t.sideB ? at[t.joint].jacobianB : at[t.joint].jacobianA;
+  };
+  const auto assemble = [&](const std::vector<joints::ConstraintEval>& rowsAt,
+                            const std::vector<joints::ConstraintEval>& impulsesAt) {
     std::vector<Eigen::Triplet<double>> triplets;
     for (const auto& [body, list] : touches)
       for (const BodyTouch& a : list)
         for (const BodyTouch& b : list) {
-          const joints::RowJacobian& Ja =
-              a.sideB ? rowsAt[a.joint].jacobianB : rowsAt[a.joint].jacobianA;
-          const Eigen::MatrixXd block = Ja * inverseMassTimesJt(body, jac(b));
+          const Eigen::MatrixXd block =
+              side(rowsAt, a) * inverseMassTimesJt(body, side(impulsesAt, b));
           for (int r = 0; r < block.rows(); ++r)
             for (int c = 0; c < block.cols(); ++c)
               triplets.emplace_back(offset[a.joint] + r, offset[b.joint] + c, block(r, c));
@@ -103,7 +104,7 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
     A.setFromTriplets(triplets.begin(), triplets.end());
     return A;
   };
-  Eigen::SparseMatrix<double> A = assemble(start);
+  Eigen::SparseMatrix<double> A = assemble(start, start);
   double maxDiagonal = 0.0;
   for (int i = 0; i < n; ++i) maxDiagonal = std::max(maxDiagonal, A.coeff(i, i));
   if (maxDiagonal <= 0.0) return result;  // no joint touches a dynamic body
@@ -126,11 +127,12 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
     }
     return drift.allFinite() ? largest : std::numeric_limits<double>::infinity();
   };
-  const auto applyImpulse = [&](const Eigen::VectorXd& p) {
+  const auto applyImpulse = [&](const Eigen::VectorXd& p,
+                                const std::vector<joints::ConstraintEval>& along) {
     for (const auto& [body, list] : touches)
       for (const BodyTouch& t : list) {
         const auto impulse = p.segment(offset[t.joint], start[t.joint].rows());
-        const joints::RowJacobian& J = jac(t);
+        const joints::RowJacobian& J = side(along, t);
         state.linearVelocities[body] +=
             state.inverseMasses[body] * (J.leftCols<3>().transpose() * impulse);
         state.angularVelocities[body] +=
@@ -161,7 +163,7 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
     // ~h|omega| per pass and fails on a whipping chain's tip). B turns singular where a chain
     // passes a straight configuration, so the step is Levenberg-Marquardt damped:
     // (B^T B + mu I) p = B^T (-C/h), mu shrunk after a success and grown until the error drops.
-    const Eigen::SparseMatrix<double> B = assemble(predicted) + compliance * identity;
+    const Eigen::SparseMatrix<double> B = assemble(predicted, start) + compliance * identity;
     const Eigen::SparseMatrix<double> normal = B.transpose() * B;
     const Eigen::VectorXd rhs = B.transpose() * (-drift / h);
     double scaleOfNormal = 0.0;
@@ -176,7 +178,7 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
       if (ldlt.info() != Eigen::Success) break;
       p = ldlt.solve(rhs);
       if (!p.allFinite()) break;
-      applyImpulse(p);
+      applyImpulse(p, start);
       trial = predictErrors();
       improved = drift.norm() < norm;
       if (improved) {
@@ -191,6 +193,41 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
       break;
     }
     total += p;
+    const bool stalled = trial > 0.5 * largest;  // Newton near a root at least halves |C|
+    largest = trial;
+    result.iterations = pass + 1;
+    if (stalled) break;
+  }
+  // Where SHAKE has no root (the start-of-step rows J_n cannot reach the manifold; e.g. a heavy
+  // load swinging on light links, whose centripetal tension along J_n spins the tilted links),
+  // project instead: Gauss-Newton on C with the impulses along the rows at the predicted state,
+  // (J_p M^-1 J_p^T) p = -C/h, a step halved until |C| drops (Cline and Pai 2003,
+  // post-stabilization). It closes the joints; the step is then not exactly SHAKE.
+  for (int pass = result.iterations; pass < settings.iterations && largest > settings.tolerance;
+       ++pass) {
+    const std::vector<joints::ConstraintEval> along = predicted;
+    ldlt.compute(assemble(along, along) + compliance * identity);
+    if (ldlt.info() != Eigen::Success) break;
+    Eigen::VectorXd p = ldlt.solve(-drift / h);
+    if (!p.allFinite()) break;
+    saveVelocities();
+    const double norm = drift.norm();
+    bool improved = false;
+    double trial = largest;
+    for (int halving = 0; halving < 8 && !improved; ++halving) {
+      applyImpulse(p, along);
+      trial = predictErrors();
+      improved = drift.norm() < norm;
+      if (!improved) {
+        restoreVelocities();
+        p *= 0.5;
+      }
+    }
+    if (!improved) {
+      predictErrors();  // velocities restored: refresh the predicted errors
+      break;
+    }
+    total += p;  // along J_p, booked on the start rows (the reaction is approximate there)
     largest = trial;
     result.iterations = pass + 1;
   }

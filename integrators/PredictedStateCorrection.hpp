@@ -9,11 +9,14 @@
 //      sparse LDL^T, plus a tiny compliance eps I with eps = 1e-10 max diag(A) so redundant
 //      rows, e.g. a closed loop of hinges, stay solvable; SOLVERS.md sec. 10) and apply
 //      dv = M^-1 J^T p to the velocities;
-//   4. repeat until every |C(t+h)| <= tolerance or the iteration cap.
+//   4. repeat until every |C(t+h)| <= tolerance or the iteration cap;
+//   5. if a pass stalls (|C| not halved: SHAKE has no root near, e.g. a heavy load on light
+//      links), the remaining passes project along the rows at the predicted state instead.
 // The converged velocity moves the bodies exactly onto the constraint manifold. With the
 // velocity-level impulse of the solve along the same J^T, the whole step is the SHAKE
 // discretisation (Ryckaert, Ciccotti, Berendsen 1977), which is symplectic: joint drift is
-// removed without the energy Baumgarte's bias pumps in or out.
+// removed without the energy Baumgarte's bias pumps in or out. Steps that needed the projection
+// of 5. are not SHAKE (the force direction is taken at t+h, which also damps the fast modes).
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/joints/JointDef.hpp>
 #include <coulomb/joints/RowBlock.hpp>

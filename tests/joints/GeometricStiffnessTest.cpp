@@ -1,0 +1,48 @@
+// joints/GeometricStiffness: K = [f]x [r]x against finite differences of the torque r x f as the
+// body turns, and the stabilizing inertia against the explicit stability limit omega h = 2.
+#include <gtest/gtest.h>
+#include <coulomb/joints/GeometricStiffness.hpp>
+
+#include <Eigen/Geometry>
+
+using namespace coulomb;
+
+TEST(GeometricStiffness, MatchesTheTorqueChangeOfATurnedArm) {
+  const Eigen::Vector3d force(3.0, -1.0, 2.0), arm(0.2, 0.5, -0.4);
+  const Eigen::Matrix3d k = joints::rotationalGeometricStiffness(force, arm);
+  const double eps = 1e-7;
+  for (int axis = 0; axis < 3; ++axis) {
+    const Eigen::Matrix3d turn(Eigen::AngleAxisd(eps, Eigen::Vector3d::Unit(axis)));
+    const Eigen::Matrix3d back(Eigen::AngleAxisd(-eps, Eigen::Vector3d::Unit(axis)));
+    const Eigen::Vector3d difference =
+        ((turn * arm).cross(force) - (back * arm).cross(force)) / (2.0 * eps);
+    EXPECT_LT((difference - k.col(axis)).norm(), 1e-7) << "axis " << axis;
+  }
+}
+
+TEST(GeometricStiffness, TensionOnALinkRestoresItsTransverseAxes) {
+  // A link along z pulled at both ends by T: k = -T L on x and y, nothing about its own axis.
+  const double tension = 98.1, length = 0.1;
+  const Eigen::Matrix3d k =
+      joints::rotationalGeometricStiffness({0, 0, tension}, {0, 0, length / 2}) +
+      joints::rotationalGeometricStiffness({0, 0, -tension}, {0, 0, -length / 2});
+  EXPECT_NEAR(k(0, 0), -tension * length, 1e-12);
+  EXPECT_NEAR(k(1, 1), -tension * length, 1e-12);
+  EXPECT_NEAR(k(2, 2), 0.0, 1e-12);
+}
+
+TEST(GeometricStiffness, InertiaIsRaisedOnlyBeyondTheExplicitLimit) {
+  const Eigen::Matrix3d inertia = Eigen::Vector3d(4.857e-6, 7.557e-5, 7.557e-5).asDiagonal();
+  const double h = 0.01;
+  // A link along x. omega h = 1.9 about y and z: stable, unchanged.
+  const double stable = 1.9 * 1.9 * 7.557e-5 / (h * h);
+  const Eigen::Matrix3d k = Eigen::Vector3d(0.0, -stable, -stable).asDiagonal();
+  EXPECT_EQ(joints::stabilizingInertia(inertia, k, h), inertia);
+  // The heavy-load chain: T L = 9.81 N m, omega h = 3.6 -> raised to omega h = sqrt(2) on y, z.
+  const Eigen::Matrix3d loaded = Eigen::Vector3d(0.0, -9.81, -9.81).asDiagonal();
+  const Eigen::Matrix3d raised = joints::stabilizingInertia(inertia, loaded, h);
+  EXPECT_EQ(raised(0, 0), inertia(0, 0));
+  EXPECT_NEAR(raised(1, 1), 0.5 * h * h * 9.81, 1e-15);
+  EXPECT_NEAR(raised(2, 2), 0.5 * h * h * 9.81, 1e-15);
+  EXPECT_NEAR(h * h * 9.81 / raised(1, 1), 2.0, 1e-12);  // (omega h)^2
+}
