@@ -1,7 +1,9 @@
 #include "Image.hpp"
 
+#include <fcntl.h>
 #include <gif_lib.h>
 #include <stb_image_write.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -42,8 +44,14 @@ void writePng(const std::string& path, const Image& image) {
 GifWriter::GifWriter(const std::string& path, int width, int height, int delayCentiseconds)
     : path_(path), width_(width), height_(height), delay_(std::max(2, delayCentiseconds)) {
   int error = 0;
-  gif_ = EGifOpenFileName(path.c_str(), false, &error);
-  if (gif_ == nullptr) fail("cannot open", error);
+  // Our own open(2): EGifOpenFileName would create the file readable by its owner only.
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+  if (fd < 0) fail("cannot create", E_GIF_ERR_OPEN_FAILED);
+  gif_ = EGifOpenFileHandle(fd, &error);  // owns fd from here (closed by EGifCloseFile)
+  if (gif_ == nullptr) {
+    ::close(fd);
+    fail("cannot open", error);
+  }
   EGifSetGifVersion(gif_, true);  // GIF89a: needed for the delay and loop extensions
   if (EGifPutScreenDesc(gif_, width, height, 8, 0, nullptr) == GIF_ERROR)
     fail("cannot write the screen of", gif_->Error);
