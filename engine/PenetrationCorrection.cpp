@@ -28,7 +28,9 @@ solvers::BlockSparseMatrix normalNormalBlock(const VelocityProblemNormals& norma
       rowStart.push_back(static_cast<int>(columns.size()));
     }
   } else {
-    const solvers::BlockSparseMatrix& W = *normals.W.blockSparseMatrix();
+    const solvers::BlockSparseMatrix& W = normals.W.blockSparseMatrix()
+                                              ? *normals.W.blockSparseMatrix()
+                                              : normals.W.bodySpaceOperator()->toBlockSparse();
     // Solver block of W <-> contact index, for the blocks that start at a contact's normal row.
     std::vector<int> contactOfBlock(W.blockCount(), -1), blockOfContact(contacts);
     int b = 0;
@@ -82,8 +84,13 @@ std::optional<solvers::SolverReport> correctPenetration(
   AssembledProblem assembled;
   if (velocityProblem != nullptr && velocityProblem->usable(normals.blocks.size())) {
     const auto contacts = static_cast<int>(normals.blocks.size());
-    assembled.problem.W =
-        solvers::DelassusOperator::blockSparse(normalNormalBlock(*velocityProblem));
+    if (const auto* body = velocityProblem->W.bodySpaceOperator())  // stays in body space, O(rows)
+      assembled.problem.W =
+          solvers::DelassusOperator::bodySpace(std::make_shared<const solvers::BodySpaceDelassus>(
+              body->selectRows(velocityProblem->normalRows)));
+    else
+      assembled.problem.W =
+          solvers::DelassusOperator::blockSparse(normalNormalBlock(*velocityProblem));
     assembled.problem.blocks.assign(contacts, solvers::ConstraintBlock::unilateral());
     assembled.problem.q.resize(contacts);
     assembled.slots.resize(contacts);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <compare>
+#include <memory>
 #include <utility>
 
 namespace coulomb::engine {
@@ -161,9 +162,43 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
   if (articulations != nullptr)
     out.degreesOfFreedom += articulations->addDelassusBlocks(rows, state, treeBlocks);
 
+  out.problem.q = std::move(q);
+  out.problem.blocks = std::move(solverBlocks);
+  bool allWarm = blockCount > 0;
+  for (const joints::RowBlock& b : rows.blocks) allWarm = allWarm && b.warmStart.size() == b.rows();
+  if (allWarm) {
+    Eigen::VectorXd warm(size);
+    for (int k = 0; k < blockCount; ++k)
+      warm.segment(out.slots[k].offset, out.slots[k].rows) = rows.blocks[k].warmStart;
+    out.problem.warmStart = std::move(warm);
+  }
+
+  const bool dense = size <= settings_.denseRowLimit;
+  if (!dense && treeBlocks.empty() && settings_.bodySpace) {
+    // Large islands of free bodies: W stays factored (J, M^-1 J^T per side; BodySpaceDelassus),
+    // O(rows) to build; Gauss-Seidel never forms W, other solvers build it once on demand.
+    auto factors = std::make_shared<solvers::BodySpaceDelassus>(
+        static_cast<int>(groupStart.size()) - 1, out.problem.blockSizes());
+    int solverBlock = 0;
+    for (int k = 0; k < blockCount; ++k) {
+      const joints::RowBlock& bk = rows.blocks[k];
+      const bool contact = bk.kind == joints::RowKind::Contact3D;
+      const int parts = contact ? 1 : bk.rows(), height = contact ? 3 : 1;
+      for (int part = 0; part < parts; ++part, ++solverBlock)
+        for (const int side : {0, 1}) {
+          if (groupOfSide[2 * k + side] < 0) continue;
+          const joints::RowJacobian& jac = side == 1 ? bk.jacobianB : bk.jacobianA;
+          factors->setSide(solverBlock, side, groupOfSide[2 * k + side],
+                           jac.middleRows(part * height, height),
+                           minvJt[2 * k + side].middleCols(part * height, height));
+        }
+    }
+    out.problem.W = solvers::DelassusOperator::bodySpace(std::move(factors));
+    return out;
+  }
+
   // W_kj = sum over the bodies b shared by blocks k and j (in increasing body index) of
   // J_k,b M_b^-1 J_j,b^T, plus the trees' part; built row block by row block, columns ascending.
-  const bool dense = size <= settings_.denseRowLimit;
   Eigen::MatrixXd denseW;
   if (dense) denseW.setZero(size, size);
   SparseRowsBuilder sparse(rows, blockCount);
@@ -211,17 +246,6 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
 
   out.problem.W = dense ? solvers::DelassusOperator::dense(std::move(denseW))
                         : solvers::DelassusOperator::blockSparse(sparse.build());
-  out.problem.q = std::move(q);
-  out.problem.blocks = std::move(solverBlocks);
-
-  bool allWarm = blockCount > 0;
-  for (const joints::RowBlock& b : rows.blocks) allWarm = allWarm && b.warmStart.size() == b.rows();
-  if (allWarm) {
-    Eigen::VectorXd warm(size);
-    for (int k = 0; k < blockCount; ++k)
-      warm.segment(out.slots[k].offset, out.slots[k].rows) = rows.blocks[k].warmStart;
-    out.problem.warmStart = std::move(warm);
-  }
   return out;
 }
 

@@ -17,6 +17,10 @@ struct AssemblySettings {
   // [scalar unknowns] Islands with at most this many rows get a dense W (a dense 3x3 block loop
   // is faster than sparse bookkeeping below ~100 rows); larger ones a block-sparse W.
   int denseRowLimit = 96;
+  // Larger islands without articulation rows get W factored (solvers::BodySpaceDelassus: J and
+  // M^-1 J^T per block side, O(rows)) instead of block-sparse (O(nnz W), ~28 3x3 blocks per
+  // contact on a pyramid). Gauss-Seidel then sweeps in body space; false = block-sparse W.
+  bool bodySpace = true;
 };
 
 /// Where each row block landed in the problem: its first unknown (offset into r) and row count.

@@ -95,6 +95,8 @@ std::optional<std::string> ContactProblem::validate() const {
   }
   if (const BlockSparseMatrix* s = W.blockSparseMatrix(); s && s->blockSizes() != blockSizes())
     return std::string("the block partition of W differs from the problem's blocks");
+  if (const BodySpaceDelassus* s = W.bodySpaceOperator(); s && s->blockSizes() != blockSizes())
+    return std::string("the block partition of W differs from the problem's blocks");
   for (size_t b = 0; b < blocks.size(); ++b) {
     const ConstraintBlock& k = blocks[b];
     // Built only for a message: a stream per block made validate() a hot spot of every step.
@@ -172,6 +174,15 @@ std::optional<std::string> ContactProblem::validate() const {
       const double* v = s->blockValues(s->diagonalBlock(b));
       for (int a = 0; a < s->blockSize(b); ++a)
         if (auto e = diagonalOk(s->blockOffset(b) + a, v[(s->blockSize(b) + 1) * a])) return e;
+    }
+  } else if (const BodySpaceDelassus* s = W.bodySpaceOperator()) {
+    // O(rows): the factors are finite, so is every entry of W; the diagonal from the factors.
+    if (!s->allFinite()) return std::string("W (body-space factors J, M^-1 J^T) is not finite");
+    double d[9];
+    for (int b = 0; b < s->blockCount(); ++b) {
+      s->diagonalBlock(b, d);
+      for (int a = 0; a < s->blockSize(b); ++a)
+        if (auto e = diagonalOk(s->blockOffset(b) + a, d[(s->blockSize(b) + 1) * a])) return e;
     }
   } else {
     for (int i = 0; i < n; ++i) {

@@ -54,7 +54,7 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
   const SolveContext context(options, t0);
   PreparedProblem prepared;
   try {
-    prepared = PreparedProblem::from(problem);
+    prepared = PreparedProblem::from(problem, worksInBodySpace());
   } catch (const std::exception& e) {
     report.status = SolverStatus::InvalidProblem;
     report.note(std::string("cannot prepare the problem: ") + e.what());

@@ -33,6 +33,9 @@ class ContactSolver {
     return std::nullopt;
   }
 
+  // True for solvers whose solvePrepared() works on PreparedProblem::bodySpace (W never formed).
+  [[nodiscard]] virtual bool worksInBodySpace() const { return false; }
+
   [[nodiscard]] SolveOutcome solve(const ContactProblem& problem,
                                    const SolverOptions& options = {}) const;
   // Same, starting from `start` (original variables) instead of the problem's warm start.

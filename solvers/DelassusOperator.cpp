@@ -31,12 +31,27 @@ DelassusOperator DelassusOperator::matrixFree(int size, Product product) {
   return op;
 }
 
+DelassusOperator DelassusOperator::bodySpace(std::shared_ptr<const BodySpaceDelassus> W) {
+  if (!W) throw std::invalid_argument("bodySpace: needs the factors");
+  DelassusOperator op;
+  op.storage_ = Storage::BodySpace;
+  op.dense_.reset();
+  op.body_ = std::move(W);
+  return op;
+}
+
+const BodySpaceDelassus* DelassusOperator::bodySpaceOperator() const {
+  return storage_ == Storage::BodySpace ? body_.get() : nullptr;
+}
+
 int DelassusOperator::rows() const {
   switch (storage_) {
     case Storage::Dense:
       return static_cast<int>(dense_->rows());
     case Storage::BlockSparse:
       return sparse_->size();
+    case Storage::BodySpace:
+      return body_->size();
     case Storage::MatrixFree:
       return size_;
   }
@@ -66,6 +81,10 @@ void DelassusOperator::velocity(const Eigen::VectorXd& x, const Eigen::VectorXd&
       u = q;
       sparse_->multiplyAdd(x, u);
       return;
+    case Storage::BodySpace:
+      u = q;
+      body_->multiplyAdd(x, u);
+      return;
     case Storage::MatrixFree:
       u.setZero(size_);
       product_(x, u);
@@ -84,6 +103,12 @@ Eigen::VectorXd DelassusOperator::column(int j) const {
       sparse_->multiply(e, y);
       return y;
     }
+    case Storage::BodySpace: {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(rows()), y = Eigen::VectorXd::Zero(rows());
+      e[j] = 1.0;
+      body_->multiplyAdd(e, y);
+      return y;
+    }
     case Storage::MatrixFree: {
       Eigen::VectorXd e = Eigen::VectorXd::Zero(size_), y = Eigen::VectorXd::Zero(size_);
       e[j] = 1.0;
@@ -96,6 +121,8 @@ Eigen::VectorXd DelassusOperator::column(int j) const {
 
 BlockSparseMatrix DelassusOperator::toBlockSparse(const std::vector<int>& blockSizes) const {
   if (storage_ == Storage::BlockSparse && sparse_->blockSizes() == blockSizes) return *sparse_;
+  if (storage_ == Storage::BodySpace && body_->blockSizes() == blockSizes)
+    return body_->toBlockSparse();
   const int n = rows();
   Eigen::MatrixXd dense;
   if (storage_ == Storage::Dense) {

@@ -1,9 +1,11 @@
 #pragma once
 // The Delassus operator W of a contact problem (u = W r + q, SOLVERS.md (1.1)) behind one type:
-// dense, block-sparse (blocks of 1 or 3 rows, see BlockSparseMatrix) or matrix-free (a function
-// computing W x, e.g. through body velocities u = J M^-1 J^T x). Solvers that need entries ask for
-// toBlockSparse(); for a matrix-free operator that costs one product per unknown.
+// dense, block-sparse (blocks of 1 or 3 rows, see BlockSparseMatrix), body-space (J and M^-1 J^T
+// per block, see BodySpaceDelassus: what the engine gives large islands) or matrix-free (a function
+// computing W x). Solvers that need entries ask for toBlockSparse(); for a matrix-free operator
+// that costs one product per unknown, for a body-space one O(nnz W) once (cached).
 #include <coulomb/solvers/BlockSparseMatrix.hpp>
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
 
 #include <Eigen/Core>
 
@@ -14,7 +16,7 @@ namespace coulomb::solvers {
 
 class DelassusOperator {
  public:
-  enum class Storage { Dense, BlockSparse, MatrixFree };
+  enum class Storage { Dense, BlockSparse, BodySpace, MatrixFree };
   // y = W x; y has the right size on entry.
   using Product = std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& y)>;
 
@@ -22,12 +24,16 @@ class DelassusOperator {
   static DelassusOperator dense(Eigen::MatrixXd W);
   static DelassusOperator blockSparse(BlockSparseMatrix W);
   static DelassusOperator matrixFree(int size, Product product);
+  static DelassusOperator bodySpace(std::shared_ptr<const BodySpaceDelassus> W);
 
   [[nodiscard]] Storage storage() const { return storage_; }
   [[nodiscard]] int rows() const;
   [[nodiscard]] int cols() const;
   [[nodiscard]] const Eigen::MatrixXd* denseMatrix() const;
   [[nodiscard]] const BlockSparseMatrix* blockSparseMatrix() const;
+  [[nodiscard]] const BodySpaceDelassus* bodySpaceOperator() const;
+  // The shared body-space factors (same lifetime as any copy of this operator), or null.
+  [[nodiscard]] std::shared_ptr<const BodySpaceDelassus> sharedBodySpace() const { return body_; }
 
   // u = W x + q. For block-sparse storage the summation order is that of fc3d_velocity.
   void velocity(const Eigen::VectorXd& x, const Eigen::VectorXd& q, Eigen::VectorXd& u) const;
@@ -41,6 +47,7 @@ class DelassusOperator {
   Storage storage_ = Storage::Dense;
   std::shared_ptr<const Eigen::MatrixXd> dense_;  // shared: problems are copied cheaply
   std::shared_ptr<const BlockSparseMatrix> sparse_;
+  std::shared_ptr<const BodySpaceDelassus> body_;
   int size_ = 0;
   Product product_;
 };

@@ -35,6 +35,18 @@ void localFreeVelocity(const PreparedProblem& p, int b, const Eigen::VectorXd& r
   }
 }
 
+// The same in body space (BodySpaceDelassus): q_b + J_b dv - W_bb r_b with dv = M^-1 J^T r, so
+// O(1) per block instead of one product per block sharing a body.
+void bodySpaceFreeVelocity(const PreparedProblem& p, int b, const Eigen::VectorXd& r,
+                           const Eigen::VectorXd& dv, double* qt) {
+  const int off = p.offset[b], s = p.blocks[b].size();
+  for (int a = 0; a < s; ++a) qt[a] = p.q[off + a];
+  p.bodySpace->addBlockVelocity(b, dv, qt);
+  const double* d = p.diagonalBlock(b);
+  for (int a = 0; a < s; ++a)
+    for (int c = 0; c < s; ++c) qt[a] -= d[s * a + c] * r[off + c];
+}
+
 double projectScalar(const ConstraintBlock& b, double x) {
   switch (b.kind) {
     case BlockKind::Unilateral:
@@ -61,6 +73,9 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
 
   Eigen::VectorXd u, best = r;
   double bestResidual = p.residual(r, u);
+  const BodySpaceDelassus* body = p.bodySpace.get();
+  Eigen::VectorXd dv;  // body space: M^-1 J^T r, kept current by every block update
+  if (body) body->bodyVelocities(r, dv);
   double windowBest = bestResidual;
   int windowStart = 0;
   report.status = SolverStatus::MaxIterations;
@@ -73,8 +88,13 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
       for (int i = nb - 1; i > 0; --i) std::swap(order[i], order[rng() % (i + 1)]);
     for (int b : order) {
       const int off = p.offset[b];
-      double qt[3];
-      localFreeVelocity(p, b, r, qt);
+      double qt[3], before[3] = {r[off], 0.0, 0.0};
+      if (body) {
+        bodySpaceFreeVelocity(p, b, r, dv, qt);
+        if (p.blocks[b].isContact()) before[1] = r[off + 1], before[2] = r[off + 2];
+      } else {
+        localFreeVelocity(p, b, r, qt);
+      }
       const ConstraintBlock& blk = p.blocks[b];
       if (blk.isContact()) {
         const Eigen::Vector3d old(r[off], r[off + 1], r[off + 2]);
@@ -88,15 +108,27 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
         }
         if (next.allFinite()) r.segment<3>(off) = next;
       } else {  // exact scalar solve: u_i = W_ii r_i + q~_i = 0, then project (10.1)
-        const double w = p.W.blockValues(p.W.diagonalBlock(b))[0];
+        const double w = p.diagonalBlock(b)[0];
         const double exact = projectScalar(blk, -qt[0] / w);
         r[off] = projectScalar(blk, r[off] + omega * (exact - r[off]));
+      }
+      if (body) {
+        const double dx[3] = {r[off] - before[0], blk.isContact() ? r[off + 1] - before[1] : 0.0,
+                              blk.isContact() ? r[off + 2] - before[2] : 0.0};
+        body->addBlockImpulse(b, dx, dv);
       }
     }
     const int interval =
         settings.residualInterval > 0 ? settings.residualInterval : std::clamp(sweep / 20, 1, 5);
     if (sweep % interval != 0 && sweep != maxSweeps) continue;
-    const double e = p.residual(r, u);
+    double e = 0.0;
+    if (body) {  // u = q + J dv: one pass, dv is current
+      u = p.q;
+      for (int b = 0; b < nb; ++b) body->addBlockVelocity(b, dv, u.data() + p.offset[b]);
+      e = p.residualFromVelocity(r, u);
+    } else {
+      e = p.residual(r, u);
+    }
     context.record(report, sweep, e);
     report.nativeResidual = e;
     if (e < bestResidual || !std::isfinite(bestResidual)) {
@@ -121,6 +153,7 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
           s << "stalled at sweep " << sweep << " (" << bestResidual << "): omega -> " << omega;
           report.note(s.str());
           r = best;
+          if (body) body->bodyVelocities(r, dv);
         } else {
           report.status = SolverStatus::Stalled;
           std::ostringstream s;

@@ -7,14 +7,21 @@
 
 namespace coulomb::solvers {
 
-PreparedProblem PreparedProblem::from(const ContactProblem& problem) {
+PreparedProblem PreparedProblem::from(const ContactProblem& problem, bool keepBodySpace) {
   PreparedProblem p;
   p.blocks = problem.blocks;
   p.offset = problem.blockOffsets();
-  p.W = problem.W.toBlockSparse(problem.blockSizes());
   p.q = problem.q;
   bool anisotropic = false;
   for (const ConstraintBlock& b : p.blocks) anisotropic |= b.isContact() && b.anisotropic;
+  if (keepBodySpace && !anisotropic && problem.W.bodySpaceOperator()) {
+    p.bodySpace = problem.W.sharedBodySpace();
+    p.diagonalBlocks.resize(9 * p.blocks.size());
+    for (int b = 0; b < p.blockCount(); ++b)
+      p.bodySpace->diagonalBlock(b, &p.diagonalBlocks[9 * b]);
+  } else {
+    p.W = problem.W.toBlockSparse(problem.blockSizes());
+  }
   if (anisotropic) {
     p.scale = Eigen::VectorXd::Ones(p.size());
     for (size_t b = 0; b < p.blocks.size(); ++b) {
@@ -32,8 +39,12 @@ PreparedProblem PreparedProblem::from(const ContactProblem& problem) {
   return p;
 }
 
+const double* PreparedProblem::diagonalBlock(int b) const {
+  return bodySpace ? &diagonalBlocks[9 * b] : W.blockValues(W.diagonalBlock(b));
+}
+
 Eigen::Matrix3d PreparedProblem::contactBlock(int b) const {
-  const double* v = W.blockValues(W.diagonalBlock(b));
+  const double* v = diagonalBlock(b);
   Eigen::Matrix3d m;
   m << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
   return m;
@@ -42,13 +53,16 @@ Eigen::Matrix3d PreparedProblem::contactBlock(int b) const {
 double PreparedProblem::diagonal(int row) const {
   const int b =
       static_cast<int>(std::upper_bound(offset.begin(), offset.end(), row) - offset.begin()) - 1;
-  const int a = row - offset[b], s = W.blockSize(b);
-  return W.blockValues(W.diagonalBlock(b))[(s + 1) * a];
+  const int a = row - offset[b], s = blocks[b].size();
+  return diagonalBlock(b)[(s + 1) * a];
 }
 
 void PreparedProblem::velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) const {
   u = q;
-  W.multiplyAdd(r, u);
+  if (bodySpace)
+    bodySpace->multiplyAdd(r, u);
+  else
+    W.multiplyAdd(r, u);
 }
 
 double PreparedProblem::residualFromVelocity(const Eigen::VectorXd& r,

@@ -13,12 +13,17 @@
 #include <Eigen/Core>
 
 #include <chrono>
+#include <memory>
 #include <vector>
 
 namespace coulomb::solvers {
 
 struct PreparedProblem {
-  BlockSparseMatrix W;
+  BlockSparseMatrix W;  // empty when bodySpace is set
+  // Set instead of W for solvers that work on the factors (Gauss-Seidel, see BodySpaceDelassus)
+  // when the problem's W is body-space and isotropic: W is then never formed.
+  std::shared_ptr<const BodySpaceDelassus> bodySpace;
+  std::vector<double> diagonalBlocks;  // with bodySpace: W_bb row-major at 9 b
   Eigen::VectorXd q;
   std::vector<ConstraintBlock> blocks;  // isotropic (anisotropic ones mapped, see above)
   std::vector<int> offset;              // blocks.size() + 1 entries
@@ -26,12 +31,13 @@ struct PreparedProblem {
   double qNorm = 0.0;                   // plainNorm(q)
   double maxDiagonal = 0.0;             // max_i W_ii
 
-  static PreparedProblem from(const ContactProblem& problem);
+  static PreparedProblem from(const ContactProblem& problem, bool keepBodySpace = false);
 
   [[nodiscard]] int size() const { return static_cast<int>(q.size()); }
   [[nodiscard]] int blockCount() const { return static_cast<int>(blocks.size()); }
   [[nodiscard]] Eigen::Matrix3d contactBlock(int b) const;  // W_bb of a contact block
   [[nodiscard]] double diagonal(int row) const;             // W_ii
+  [[nodiscard]] const double* diagonalBlock(int b) const;   // W_bb, row-major
 
   void velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;  // u = W r + q
   // e_rel of (1.8) in this problem's variables; computes u.

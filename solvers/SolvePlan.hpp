@@ -26,6 +26,7 @@ struct ProblemFeatures {
   // matrix-free (its diagonal costs one product per unknown) or there is no active contact.
   double massRatio = std::numeric_limits<double>::quiet_NaN();
   bool zeroIsExact = false;  // all q_N >= 0 (contacts, unilateral rows) and no equality/bounded
+  bool factored = false;     // W is body-space (BodySpaceDelassus): a sweep costs O(contacts)
 };
 
 struct SolvePlan {

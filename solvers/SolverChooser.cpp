@@ -16,6 +16,13 @@ bool normalDiagonal(const ContactProblem& problem, const std::vector<int>& offse
     value = (*dense)(row, row);
     return true;
   }
+  if (const BodySpaceDelassus* body = problem.W.bodySpaceOperator()) {
+    if (body->blockCount() != static_cast<int>(problem.blocks.size())) return false;
+    double d[9];
+    body->diagonalBlock(block, d);
+    value = d[0];
+    return true;
+  }
   const BlockSparseMatrix* sparse = problem.W.blockSparseMatrix();
   if (!sparse || sparse->blockCount() != static_cast<int>(problem.blocks.size())) return false;
   const int k = sparse->diagonalBlock(block);
@@ -52,6 +59,7 @@ ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
   f.unknowns = problem.size();
   f.degreesOfFreedom = island.degreesOfFreedom;
   f.zeroIsExact = true;
+  f.factored = problem.W.bodySpaceOperator() != nullptr;
   const std::vector<int> offsets = problem.blockOffsets();
   double minW = std::numeric_limits<double>::infinity(), maxW = 0.0;
   bool diagonalKnown = true;
@@ -173,6 +181,13 @@ SolvePlan SolverChooser::automatic(const ProblemFeatures& f) const {
     plan.solvers = {"pgs", "ac_newton", "bgs"};
     plan.reason = std::string(pileByNu ? "pile or tower by nu" : "large island, dofs unknown") +
                   " (" + what + "): pgs, then ac_newton";
+    return plan;
+  }
+  if (f.factored && settings_.factoredTrySweeps > 0) {
+    plan.solvers = {"bgs", "ac_newton", "fb_newton"};
+    plan.iterationCaps = {settings_.factoredTrySweeps};
+    plan.reason = "body-space W (" + what + "): " + std::to_string(settings_.factoredTrySweeps) +
+                  " bgs sweeps, then ac_newton";
     return plan;
   }
   if (f.activeContacts <= settings_.smallActiveContacts) {

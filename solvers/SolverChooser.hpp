@@ -34,6 +34,11 @@ struct ChooserSettings {
   int smallActiveContacts = 3;
   // [sweeps] cap of that bgs try. Default 50: a failed try costs about what one Newton step does.
   int smallTrySweeps = 50;
+  // [sweeps] islands with a body-space W (large islands of free bodies) that are well-posed
+  // enough for Newton first get a bgs try of this many sweeps: a warm-started resting stack is
+  // solved in a few sweeps of O(contacts) each, where one Newton step factorizes W (a dense
+  // 240 x 240 LU on the 20-box tower). Default 30 (docs/benchmarks.md, "Body-space sweeps").
+  int factoredTrySweeps = 30;
   // [-] mass ratio kappa above which Newton goes first whatever nu (Gauss-Seidel stagnates on
   // large mass ratios, SOLVERS.md section 9). Default 1e3.
   double newtonMassRatio = 1e3;

@@ -32,6 +32,7 @@ class BgsSolver final : public ContactSolver {
  public:
   explicit BgsSolver(BgsOptions options = {}) : options_(options) {}
   [[nodiscard]] std::string name() const override { return "bgs"; }
+  [[nodiscard]] bool worksInBodySpace() const override { return true; }
   [[nodiscard]] const BgsOptions& options() const { return options_; }
   void solvePrepared(const PreparedProblem& problem, const SolveContext& context,
                      Eigen::VectorXd& r, SolverReport& report) const override;

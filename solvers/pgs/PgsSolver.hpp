@@ -39,6 +39,7 @@ class PgsSolver final : public ContactSolver {
  public:
   explicit PgsSolver(PgsOptions options = {}) : options_(options) {}
   [[nodiscard]] std::string name() const override { return "pgs"; }
+  [[nodiscard]] bool worksInBodySpace() const override { return true; }
   [[nodiscard]] const PgsOptions& options() const { return options_; }
   void solvePrepared(const PreparedProblem& problem, const SolveContext& context,
                      Eigen::VectorXd& r, SolverReport& report) const override;

@@ -3,6 +3,8 @@
 
 #include "TestProblems.hpp"
 
+#include <memory>
+
 using namespace coulomb::solvers;
 
 namespace {
@@ -67,6 +69,25 @@ TEST(SolverChooser, FewActiveContactsTryBgsFirstWithACap) {
   ASSERT_FALSE(plan.iterationCaps.empty());
   EXPECT_GT(plan.iterationCaps.front(), 0);
   EXPECT_EQ(plan.solvers[1], "ac_newton");
+}
+
+TEST(SolverChooser, BodySpaceIslandsTryShortBgsBeforeNewton) {
+  // 20 contacts, each on its own body (W = identity in body space), nu = 0.5: Newton-sized, but
+  // a sweep costs O(contacts) and one Newton step a factorization of W.
+  auto factors = std::make_shared<BodySpaceDelassus>(20, std::vector<int>(20, 3));
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3, 6);
+  J.leftCols<3>().setIdentity();
+  for (int c = 0; c < 20; ++c) factors->setSide(c, 1, c, J, J.transpose());
+  ContactProblem p = diagonalProblem(20, false);
+  p.W = DelassusOperator::bodySpace(factors);
+  const SolvePlan plan = SolverChooser().choose(p, {120}, "auto", {});
+  EXPECT_TRUE(plan.features.factored);
+  ASSERT_EQ(plan.solvers.size(), 3u);
+  EXPECT_EQ(plan.solvers.front(), "bgs") << plan.reason;
+  EXPECT_EQ(plan.solvers[1], "ac_newton");
+  ASSERT_FALSE(plan.iterationCaps.empty());
+  EXPECT_EQ(plan.iterationCaps.front(), ChooserSettings{}.factoredTrySweeps);
+  EXPECT_NEAR(plan.features.massRatio, 1.0, 1e-12);  // the diagonal read from the factors
 }
 
 TEST(SolverChooser, LargeIslandsAvoidNewton) {

@@ -1,0 +1,155 @@
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace coulomb::solvers {
+
+namespace {
+double dot6(const double* a, const double* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
+}
+}  // namespace
+
+BodySpaceDelassus::BodySpaceDelassus(int bodyCount, std::vector<int> blockSizes)
+    : bodies_(bodyCount), size_(std::move(blockSizes)) {
+  if (bodyCount < 0) throw std::invalid_argument("BodySpaceDelassus: negative body count");
+  offset_.assign(size_.size() + 1, 0);
+  for (std::size_t b = 0; b < size_.size(); ++b) {
+    if (size_[b] != 1 && size_[b] != 3)
+      throw std::invalid_argument("BodySpaceDelassus: blocks have 1 or 3 rows");
+    offset_[b + 1] = offset_[b] + size_[b];
+  }
+  body_.assign(2 * size_.size(), -1);
+  j_.assign(static_cast<std::size_t>(12) * size(), 0.0);
+  g_.assign(static_cast<std::size_t>(12) * size(), 0.0);
+}
+
+void BodySpaceDelassus::setSide(int block, int side, int body,
+                                const Eigen::Ref<const Eigen::MatrixXd>& J,
+                                const Eigen::Ref<const Eigen::MatrixXd>& G) {
+  const int k = size_.at(block);
+  if (side < 0 || side > 1 || body < 0 || body >= bodies_ || J.rows() != k || J.cols() != 6 ||
+      G.rows() != 6 || G.cols() != k)
+    throw std::invalid_argument("BodySpaceDelassus::setSide: bad side, body or shapes");
+  body_[2 * block + side] = body;
+  for (int a = 0; a < k; ++a) {
+    const int row = offset_[block] + a;
+    for (int c = 0; c < 6; ++c) {
+      j_[(2 * row + side) * 6 + c] = J(a, c);
+      g_[(2 * row + side) * 6 + c] = G(c, a);
+    }
+  }
+  entries_.reset();
+}
+
+void BodySpaceDelassus::bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd& dv) const {
+  dv.setZero(6 * bodies_);
+  for (int b = 0; b < blockCount(); ++b) addBlockImpulse(b, x.data() + offset_[b], dv);
+}
+
+void BodySpaceDelassus::addBlockVelocity(int b, const Eigen::VectorXd& dv, double* u) const {
+  for (int side = 0; side < 2; ++side) {
+    const int body = body_[2 * b + side];
+    if (body < 0) continue;
+    const double* v = dv.data() + 6 * body;
+    for (int a = 0; a < size_[b]; ++a) u[a] += dot6(J(offset_[b] + a, side), v);
+  }
+}
+
+void BodySpaceDelassus::addBlockImpulse(int b, const double* dx, Eigen::VectorXd& dv) const {
+  for (int side = 0; side < 2; ++side) {
+    const int body = body_[2 * b + side];
+    if (body < 0) continue;
+    double* v = dv.data() + 6 * body;
+    for (int a = 0; a < size_[b]; ++a) {
+      const double* g = G(offset_[b] + a, side);
+      for (int c = 0; c < 6; ++c) v[c] += g[c] * dx[a];
+    }
+  }
+}
+
+void BodySpaceDelassus::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  Eigen::VectorXd dv;
+  bodyVelocities(x, dv);
+  for (int b = 0; b < blockCount(); ++b) addBlockVelocity(b, dv, y.data() + offset_[b]);
+}
+
+void BodySpaceDelassus::diagonalBlock(int b, double* out) const {
+  const int k = size_[b];
+  std::fill(out, out + k * k, 0.0);
+  for (int side = 0; side < 2; ++side) {
+    const int body = body_[2 * b + side];
+    if (body < 0) continue;
+    for (int other = 0; other < 2; ++other) {  // both sides on one body: both terms
+      if (body_[2 * b + other] != body) continue;
+      for (int a = 0; a < k; ++a)
+        for (int c = 0; c < k; ++c)
+          out[a * k + c] += dot6(J(offset_[b] + a, side), G(offset_[b] + c, other));
+    }
+  }
+}
+
+BodySpaceDelassus BodySpaceDelassus::selectRows(const std::vector<int>& rows) const {
+  BodySpaceDelassus out(bodies_, std::vector<int>(rows.size(), 1));
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const int row = rows[k];
+    if (row < 0 || row >= size())
+      throw std::invalid_argument("BodySpaceDelassus::selectRows: row out of range");
+    const auto b = static_cast<std::size_t>(std::upper_bound(offset_.begin(), offset_.end(), row) -
+                                            offset_.begin() - 1);
+    for (int side = 0; side < 2; ++side) {
+      out.body_[2 * k + side] = body_[2 * b + side];
+      std::copy_n(J(row, side), 6, &out.j_[(2 * k + side) * 6]);
+      std::copy_n(G(row, side), 6, &out.g_[(2 * k + side) * 6]);
+    }
+  }
+  return out;
+}
+
+bool BodySpaceDelassus::allFinite() const {
+  const auto finite = [](double v) { return std::isfinite(v); };
+  return std::all_of(j_.begin(), j_.end(), finite) && std::all_of(g_.begin(), g_.end(), finite);
+}
+
+const BlockSparseMatrix& BodySpaceDelassus::toBlockSparse() const {
+  if (entries_) return *entries_;
+  // Blocks on each body, ascending (each block at most once per body).
+  std::vector<std::vector<int>> onBody(bodies_);
+  for (int b = 0; b < blockCount(); ++b)
+    for (int side = 0; side < 2; ++side) {
+      const int body = body_[2 * b + side];
+      if (body >= 0 && (onBody[body].empty() || onBody[body].back() != b))
+        onBody[body].push_back(b);
+    }
+  std::vector<int> rowStart{0}, columns, candidates;
+  std::vector<double> values;
+  for (int b = 0; b < blockCount(); ++b) {
+    candidates.assign(1, b);  // the diagonal block is always stored
+    for (int side = 0; side < 2; ++side)
+      if (body_[2 * b + side] >= 0)
+        candidates.insert(candidates.end(), onBody[body_[2 * b + side]].begin(),
+                          onBody[body_[2 * b + side]].end());
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    for (const int j : candidates) {
+      columns.push_back(j);
+      for (int a = 0; a < size_[b]; ++a)
+        for (int c = 0; c < size_[j]; ++c) {
+          double w = 0.0;
+          for (int s = 0; s < 2; ++s)
+            for (int t = 0; t < 2; ++t)
+              if (body_[2 * b + s] >= 0 && body_[2 * b + s] == body_[2 * j + t])
+                w += dot6(J(offset_[b] + a, s), G(offset_[j] + c, t));
+          values.push_back(w);
+        }
+    }
+    rowStart.push_back(static_cast<int>(columns.size()));
+  }
+  entries_ = std::make_shared<const BlockSparseMatrix>(BlockSparseMatrix::fromBlockCsr(
+      size_, std::move(rowStart), std::move(columns), std::move(values)));
+  return *entries_;
+}
+
+}  // namespace coulomb::solvers

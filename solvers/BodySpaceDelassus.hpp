@@ -1,0 +1,64 @@
+#pragma once
+// W = J M^-1 J^T kept factored, as Bullet's sequential impulse keeps it (issue 7 item 11): per
+// solver block (1 or 3 rows) its Jacobian on at most two bodies of the island, J_s (k x 6), and
+// G_s = M_s^-1 J_s^T (6 x k). Nothing of size nnz(W) is formed: W x costs O(rows) through the body
+// velocities dv = sum_s G_s x_s, u = J dv (SOLVERS.md (1.1)), and a Gauss-Seidel step on block b
+// reads u_b = q_b + J_b dv and moves dv by G_b (r_b' - r_b), O(1) per contact instead of one 3 x 3
+// product per contact sharing a body (~28 on a pyramid). Solvers that need W's entries (Newton,
+// Lemke, staggered) get them from toBlockSparse(), built once on demand and cached.
+#include <coulomb/solvers/BlockSparseMatrix.hpp>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace coulomb::solvers {
+
+class BodySpaceDelassus {
+ public:
+  /// `blockSizes`: the solver blocks (1 or 3 rows each); `bodyCount`: the island's dynamic bodies
+  /// (local indices 0 .. bodyCount-1).
+  BodySpaceDelassus(int bodyCount, std::vector<int> blockSizes);
+
+  /// Side `side` (0 or 1) of block `block` acts on local body `body` with the block's rows `J`
+  /// (k x 6, twist (v, w)) and `G` = M^-1 J^T (6 x k). A side left unset carries no unknowns.
+  void setSide(int block, int side, int body, const Eigen::Ref<const Eigen::MatrixXd>& J,
+               const Eigen::Ref<const Eigen::MatrixXd>& G);
+
+  [[nodiscard]] int size() const { return offset_.back(); }
+  [[nodiscard]] int blockCount() const { return static_cast<int>(size_.size()); }
+  [[nodiscard]] int bodyCount() const { return bodies_; }
+  [[nodiscard]] int blockSize(int b) const { return size_[b]; }
+  [[nodiscard]] int blockOffset(int b) const { return offset_[b]; }
+  [[nodiscard]] const std::vector<int>& blockSizes() const { return size_; }
+
+  /// dv = M^-1 J^T x (6 per body: linear, angular).
+  void bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd& dv) const;
+  /// u_b = J_b dv for block b (adds to u[0 .. k-1]).
+  void addBlockVelocity(int b, const Eigen::VectorXd& dv, double* u) const;
+  /// dv += G_b dx for block b (dx: k values).
+  void addBlockImpulse(int b, const double* dx, Eigen::VectorXd& dv) const;
+  /// y += W x, O(rows).
+  void multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// W_bb, row-major k x k (sum over the block's sides).
+  void diagonalBlock(int b, double* out) const;
+  /// The operator of the given rows only (each a 1-row block on the same bodies), e.g. the
+  /// contacts' normal rows for the split impulse: W' = W restricted to those rows and columns.
+  [[nodiscard]] BodySpaceDelassus selectRows(const std::vector<int>& rows) const;
+  /// Every stored number finite.
+  [[nodiscard]] bool allFinite() const;
+  /// W with every nonzero block (k, j) of blocks sharing a body, cached after the first call.
+  [[nodiscard]] const BlockSparseMatrix& toBlockSparse() const;
+
+ private:
+  [[nodiscard]] const double* J(int row, int side) const { return &j_[(2 * row + side) * 6]; }
+  [[nodiscard]] const double* G(int row, int side) const { return &g_[(2 * row + side) * 6]; }
+  int bodies_ = 0;
+  std::vector<int> size_, offset_;
+  std::vector<int> body_;      // 2 per block, -1 = no unknowns on that side
+  std::vector<double> j_, g_;  // 2 x 6 per row: J_s row and G_s column of side s
+  mutable std::shared_ptr<const BlockSparseMatrix> entries_;  // toBlockSparse() cache
+};
+
+}  // namespace coulomb::solvers
