@@ -118,8 +118,10 @@ void registerViewCommands(CLI::App& app) {
   addSceneOptions(viewCommand, *viewOptions);
   viewCommand->add_option("--frames", viewOptions->frames,
                           "Draw this many frames (stepping), then exit (for CI under xvfb-run)");
-  viewCommand->add_option("--screenshot", viewOptions->screenshot,
-                          "Write the last frame as PNG (with --frames)");
+  viewCommand
+      ->add_option("--screenshot", viewOptions->screenshot,
+                   "Write the last frame as PNG (with --frames)")
+      ->needs("--frames");
   viewCommand->callback([viewOptions] { view(*viewOptions); });
 
   auto renderOptions = std::make_shared<ViewCommandOptions>();

@@ -8,10 +8,10 @@ if ! command -v xvfb-run >/dev/null 2>&1; then
   exit 77
 fi
 rm -f "$3"
-xvfb-run -a -s "-screen 0 1024x768x24" "$1" view "$2" --frames 10 --width 640 --height 480 \
+xvfb-run -a -s "-screen 0 1024x768x24" "$1" view "$2" --frames 5 --width 480 --height 360 \
   --screenshot "$3"
 # A PNG of the window's size: signature, then IHDR width and height (big-endian) at bytes 16..23.
 test "$(od -An -c -j1 -N3 "$3" | tr -d ' ')" = "PNG"
 size=$(od -An -tu1 -j16 -N8 "$3" | tr -s ' ')
 echo "screenshot IHDR bytes:$size"
-test "$size" = " 0 0 2 128 0 0 1 224"
+test "$size" = " 0 0 1 224 0 0 1 104"
