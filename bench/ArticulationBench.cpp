@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <bench/AbaChain.hpp>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -17,23 +19,10 @@
 using namespace coulomb::joints::tree;
 using coulomb::geometry::Pose;
 using coulomb::geometry::SpatialInertia;
+using coulomb::samples::serialChain;
+using coulomb::samples::wave;
 
 namespace {
-/// n revolute links 0.1 m apart, axes alternating y and x (a snake), boxes of 1 kg.
-Articulation serialChain(int n) {
-  std::vector<TreeLink> links;
-  const SpatialInertia box{1.0, Eigen::Vector3d(0.05, 0, 0),
-                           Eigen::Vector3d(0.002, 0.01, 0.01).asDiagonal()};
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d axis = i % 2 == 0 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
-    links.push_back({"link" + std::to_string(i), i - 1,
-                     TreeJoint::revolute("joint" + std::to_string(i),
-                                         Pose::translation({i == 0 ? 0.0 : 0.1, 0, 0}), axis),
-                     box});
-  }
-  return Articulation(links);
-}
-
 Eigen::Vector3d vector3(const nlohmann::json& j) {
   return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
 }
@@ -59,12 +48,6 @@ Articulation urdfModel(const std::string& model) {
   return Articulation(links);
 }
 
-Eigen::VectorXd wave(int n, double phase) {
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v(i) = 0.5 * std::sin(phase + 0.7 * i);
-  return v;
-}
-
 void runAba(benchmark::State& state, const Articulation& tree) {
   const Eigen::VectorXd q = wave(tree.nq(), 0.1), qd = wave(tree.nv(), 0.2),
                         tau = wave(tree.nv(), 0.3);
@@ -73,13 +56,12 @@ void runAba(benchmark::State& state, const Articulation& tree) {
     qdd = forwardDynamics(tree, q, qd, tau);
     benchmark::DoNotOptimize(qdd.data());
   }
-  const Eigen::VectorXd residual = massMatrix(tree, q) * qdd + biasForces(tree, q, qd) - tau;
   state.counters["links"] = tree.linkCount();
   state.counters["dofs"] = tree.nv();
   state.counters["time_per_link"] =
       benchmark::Counter(tree.linkCount(), benchmark::Counter::kIsIterationInvariantRate |
                                                benchmark::Counter::kInvert);
-  state.counters["residual"] = residual.lpNorm<Eigen::Infinity>();
+  state.counters["residual"] = coulomb::samples::abaResidual(tree);
 }
 
 void BM_AbaSerialChain(benchmark::State& state) {

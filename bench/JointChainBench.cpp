@@ -9,9 +9,10 @@
 #include <benchmark/benchmark.h>
 #include <coulomb/engine/World.hpp>
 
+#include <bench/JointChain.hpp>
+
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -19,55 +20,9 @@ using namespace coulomb;
 
 namespace {
 
-constexpr double kG = 9.81;
 constexpr std::array<const char*, 3> kSolvers = {"pgs!", "bgs!", "ac_newton!"};
 constexpr std::array<joints::StabilizationMethod, 2> kPolicies = {
     joints::StabilizationMethod::PredictedState, joints::StabilizationMethod::Baumgarte};
-
-struct Chain {
-  engine::World world;
-  std::vector<geometry::JointId> joints;
-};
-
-Chain buildChain(int links, double h, const std::string& solver,
-                 joints::StabilizationMethod policy) {
-  engine::WorldSettings settings;
-  settings.timeStep = h;
-  settings.solver = solver;
-  settings.jointStabilization.method = policy;
-  Chain chain{engine::World(settings), {}};
-  geometry::BodyId parent;
-  for (int i = 0; i < links; ++i) {
-    engine::BodyDesc link;
-    link.name = "link" + std::to_string(i);
-    link.pose = geometry::Pose::translation({(i + 0.5) * 0.1, 0, 0});
-    link.mass = {0.1, Eigen::Vector3d::Zero(),
-                 Eigen::Vector3d(4.857143e-6, 7.557143e-5, 7.557143e-5).asDiagonal()};
-    const geometry::BodyId body = chain.world.createBody(link);
-    engine::JointDesc joint;
-    joint.type = joints::JointType::Ball;
-    joint.bodyA = parent;
-    joint.bodyB = body;
-    joint.frameA.anchor = i == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.05, 0, 0);
-    joint.frameB.anchor = Eigen::Vector3d(-0.05, 0, 0);
-    chain.joints.push_back(chain.world.createJoint(joint));
-    parent = body;
-  }
-  return chain;
-}
-
-double maxGap(const Chain& chain) {
-  double gap = 0.0;
-  for (const geometry::JointId id : chain.joints) {
-    const joints::JointDef& j = chain.world.joint(id);
-    const auto anchor = [&](geometry::BodyId b, const Eigen::Vector3d& local) {
-      return b.valid() ? chain.world.pose(b).apply(local) : local;
-    };
-    gap =
-        std::max(gap, (anchor(j.bodyA, j.frameA.anchor) - anchor(j.bodyB, j.frameB.anchor)).norm());
-  }
-  return gap;
-}
 
 // Args: links, solver index, policy index, 1/dt.
 void BM_Chain(benchmark::State& state) {
@@ -75,19 +30,19 @@ void BM_Chain(benchmark::State& state) {
   const double h = 1.0 / static_cast<double>(state.range(3));
   const std::string solver = kSolvers[static_cast<std::size_t>(state.range(1))];
   const auto policy = kPolicies[static_cast<std::size_t>(state.range(2))];
-  Chain chain = buildChain(links, h, solver, policy);
+  samples::BallChain chain = samples::buildBallChain(links, h, solver, policy);
   double gap = 0.0;
   double correctionSolves = 0.0;
   std::int64_t steps = 0;
   for (auto _ : state) {
     const engine::StepReport report = chain.world.step();
     state.PauseTiming();
-    gap = std::max(gap, maxGap(chain));
+    gap = std::max(gap, samples::maxAnchorGap(chain));
     correctionSolves += report.joints.correctionIterations;
     ++steps;
     state.ResumeTiming();
   }
-  const double released = 0.1 * kG * 0.1 * links * links / 2.0;
+  const double released = samples::chainReleasedEnergy(links);
   state.counters["max_gap"] = gap;
   state.counters["drift_end"] = chain.world.mechanicalEnergy() / released;
   state.counters["corr_iters"] =

@@ -10,10 +10,9 @@
 //   SolverCorpusBench FOLDER [--solvers pgs,bgs,ac_newton,auto] [--tol 1e-8] [--time-limit 60]
 //                     [--repeats 5] [--max-iter N] [--out table.md] [--only NAME]
 #include <coulomb/solvers/Residual.hpp>
-#include <coulomb/solvers/SolveWithFallback.hpp>
-#include <coulomb/solvers/SolverChooser.hpp>
 #include <coulomb/solvers/SolverRegistry.hpp>
-#include <coulomb/solvers/io/Fc3dText.hpp>
+
+#include <bench/CorpusSolve.hpp>  // corpus listing and solving, shared with `coulomb bench`
 
 #include <fc3d_text.hpp>  // reference reader + residual (tests/data/fc3d, copied from the corpus)
 
@@ -123,13 +122,13 @@ int main(int argc, char** argv) {
     solvers = registry.names();
     solvers.push_back("auto");
   }
-  std::vector<std::pair<int, fs::path>> files;
-  for (const auto& e : fs::directory_iterator(folder))
-    if (e.path().extension() == ".fc3d" && (only.empty() || e.path().stem() == only)) {
-      Fc3dProblem ref;
-      if (fc3d_read(e.path().string(), ref).empty()) files.push_back({ref.nc, e.path()});
-    }
-  std::sort(files.begin(), files.end());
+  std::vector<coulomb::samples::CorpusFile> files;
+  try {
+    files = coulomb::samples::listCorpus(folder, only);
+  } catch (const std::exception& e) {
+    std::cerr << "SolverCorpusBench: " << e.what() << "\n";
+    return 1;
+  }
   const auto reference = readReference(folder / "SICONOS_REFERENCE.tsv");
 
   SolverOptions options;
@@ -139,15 +138,10 @@ int main(int argc, char** argv) {
   std::vector<Row> rows;
   double worstResidualMismatch = 0;
   std::string worstMismatchAt;
-  for (const auto& [nc, path] : files) {
-    const Fc3dReadResult read = readFc3dText(path.string());
-    if (!read.problem) {
-      std::cerr << read.error << "\n";
-      return 1;
-    }
+  for (const coulomb::samples::CorpusFile& file : files) {
+    const ContactProblem problem = coulomb::samples::readCorpusProblem(file.path);
     Fc3dProblem ref;
-    fc3d_read(path.string(), ref);
-    const ContactProblem& problem = *read.problem;
+    fc3d_read(file.path.string(), ref);
     auto check = [&](const Eigen::VectorXd& r, const std::string& at) {
       const double ours = commonResidual(problem, r).absolute;
       const double theirs = fc3d_natural_map_residual(ref, r.data());
@@ -159,27 +153,12 @@ int main(int argc, char** argv) {
     };
     check(Eigen::VectorXd::Zero(problem.size()), "r = 0");
     for (const std::string& name : solvers) {
-      auto solver = registry.create(name);
-      if (!solver && name != "auto") {
+      if (name != "auto" && !registry.create(name)) {
         std::cerr << "unknown solver " << name << "\n";
         return 2;
       }
-      auto solveOnce = [&]() {
-        if (solver) return solver->solve(problem, options);
-        const SolvePlan plan = SolverChooser().choose(problem, {}, "auto", options);
-        const PlanOutcome planned = solveWithFallback(problem, plan, registry);
-        SolveOutcome o = planned.best;
-        o.report.solver = "auto";
-        o.report.seconds = planned.seconds;
-        o.report.iterations = planned.iterations();
-        return o;
-      };
-      SolveOutcome first = solveOnce();
-      std::vector<double> times{first.report.seconds};
-      const int reps = first.report.seconds < 0.5 ? repeats : 1;
-      for (int k = 1; k < reps; ++k) times.push_back(solveOnce().report.seconds);
-      std::sort(times.begin(), times.end());
-      first.report.seconds = times[times.size() / 2];
+      const SolveOutcome first =
+          coulomb::samples::solveMedian(problem, name, options, registry, repeats);
       check(first.impulses, name + " solution");
       std::cerr << problem.name << " " << name << " " << statusName(first.report.status) << " it "
                 << first.report.iterations << " t " << first.report.seconds << " e "
@@ -245,8 +224,8 @@ int main(int argc, char** argv) {
     int counted = 0, autoConverged = 0;
     std::string slowest;
     double worstRatio = 0;
-    for (const auto& [nc, path] : files) {
-      const std::string problemName = path.stem().string();
+    for (const coulomb::samples::CorpusFile& file : files) {
+      const std::string& problemName = file.name;
       double best = -1, mine = -1;
       bool mineOk = false;
       for (const Row& r : rows) {

@@ -7,17 +7,15 @@
 
 namespace coulomb::cli {
 
-ComparisonRow runForComparison(const engine::io::Scene& scene, double timeCapSeconds) {
-  engine::World world = buildWorldFor(scene);
-  RunMetrics metrics(world);
-  runSteps(world, scene.steps, scene.settings.timeStep, metrics, {}, timeCapSeconds);
+ComparisonRow comparisonRowOf(const RunMetrics& metrics, const std::string& scene,
+                              const std::string& solver, int maxIterations) {
   const SolverTally all = metrics.allSolvers();
   ComparisonRow row;
-  row.scene = scene.name;
-  row.solver = scene.settings.solver;
+  row.scene = scene;
+  row.solver = solver;
   for (const auto& [name, tally] : metrics.solvers())
     row.used += (row.used.empty() ? "" : "+") + (name.empty() ? std::string("none") : name);
-  row.maxIterations = scene.settings.solverOptions.maxIterations;
+  row.maxIterations = maxIterations;
   row.steps = metrics.steps();
   row.msPerStep = metrics.medianStepMilliseconds();
   row.iterationsMean = all.meanIterations();
@@ -30,6 +28,15 @@ ComparisonRow runForComparison(const engine::io::Scene& scene, double timeCapSec
   row.fallbacks = all.fallbacks;
   row.maxJointGap = metrics.maxJointGap();
   row.unconverged = all.unconverged;
+  return row;
+}
+
+ComparisonRow runForComparison(const engine::io::Scene& scene, double timeCapSeconds) {
+  engine::World world = buildWorldFor(scene);
+  RunMetrics metrics(world);
+  runSteps(world, scene.steps, scene.settings.timeStep, metrics, {}, timeCapSeconds);
+  ComparisonRow row = comparisonRowOf(metrics, scene.name, scene.settings.solver,
+                                      scene.settings.solverOptions.maxIterations);
   std::ostringstream note;
   if (metrics.diverged()) note << "DIVERGED at t=" << world.time() << " s";
   if (metrics.capped())

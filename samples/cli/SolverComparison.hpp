@@ -44,6 +44,11 @@ struct ComparisonRow {
 ComparisonRow runForComparison(const engine::io::Scene& scene,
                                double timeCapSeconds = std::numeric_limits<double>::infinity());
 
+/// The figures of a finished run (no note): what runForComparison reports, for runs built
+/// without a scene (the bench suite's chains).
+ComparisonRow comparisonRowOf(const RunMetrics& metrics, const std::string& scene,
+                              const std::string& solver, int maxIterations);
+
 /// "a,b,c" -> {"a", "b", "c"}; empty items are dropped.
 std::vector<std::string> splitList(const std::string& text);
 
