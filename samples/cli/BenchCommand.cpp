@@ -101,7 +101,9 @@ void bench(const BenchCommandOptions& c) {
     if (part == "aba") runAbaPart(o, records);
   }
   std::ostringstream markdown;
-  markdown << "Made by `coulomb bench --size " << c.size << " --repeats " << c.repeats << "` in "
+  markdown << "Made by `coulomb bench --size " << c.size << " --repeats " << c.repeats
+           << " --time-cap " << c.timeCap
+           << (c.timeLimit > 0 ? " --time-limit " + std::to_string(c.timeLimit) : "") << "` in "
            << std::lround(benchNow() - start) << " s"
            << (o.corpus.empty() ? "" : "; corpus " + o.corpus) << ".\n";
   writeBenchMarkdown(markdown, records);

@@ -136,7 +136,7 @@ void writeBenchMarkdown(std::ostream& out, const std::vector<BenchRecord>& recor
            std::to_string(r.size) + " | " + num(r.ms) + " | " + num(r.iterationsMean) + " / " +
            num(r.iterationsMax) + " | " + num(r.residualMean) + " / " + num(r.residualMax) + " | " +
            num(r.maxDrift) + " | " + num(r.energyChange) + " | " + num(r.jointGap) + " | " +
-           r.status + (r.note.empty() ? "" : "; " + r.note) + " |";
+           r.status + (r.note.empty() || r.status.empty() ? "" : "; ") + r.note + " |";
   };
   const std::string sceneRule = "|---|---|---:|---:|---|---|---:|---:|---:|---|\n";
   if (present.count("scenes")) {
