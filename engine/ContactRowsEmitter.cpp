@@ -52,13 +52,18 @@ joints::RowSet emitContactRows(const Island& island,
       const double approach =
           manifold.normal.dot(pointVelocity(state, manifold.bodyB, point.position) -
                               pointVelocity(state, manifold.bodyA, point.position));
-      double bias = 0.0;
-      if (manifold.restitution > 0.0 && approach < -settings.restitutionThreshold)
-        bias = manifold.restitution * approach;
-      // Speculative gap: allow u_N >= -gap/h, so the bodies may just close it in this step.
-      // Gaps within the touching tolerance are rounding (SCENES.md A7): touching, restitution kept.
-      if (point.depth < -settings.touchingTolerance && settings.speculativeContacts)
-        bias = std::max(bias, 0.0) - point.depth / h;
+      const bool impact = manifold.restitution > 0.0 && approach < -settings.restitutionThreshold;
+      const double gap = -point.depth;
+      double bias = impact ? manifold.restitution * approach : 0.0;
+      // Speculative gap (wider than the touching tolerance, which is rounding: SCENES.md A7):
+      // u_N >= -gap/h lets the bodies close the gap within the step and no more, and a point
+      // that does not close gets no impulse. A point that v* closes within the step
+      // (-approach h > gap) is an impact at the moment it closes: Newton's law as for a touching
+      // point, u_N+ >= -e u_N- (survey, sec. 5.4), not stopped at the surface to bounce from
+      // what is left of its speed in the next step (docs/tuning.md, "Impact laws").
+      if (gap > settings.touchingTolerance && settings.speculativeContacts &&
+          !(impact && -approach * h > gap))
+        bias = gap / h;
       bias += baumgarteBias(settings.penetration, point.depth, h);
       frame.normalVelocityBias = bias;
 

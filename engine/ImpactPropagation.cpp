@@ -43,19 +43,27 @@ double normalVelocity(const BodyState& state, const ContactManifold& m, const Co
                       pointVelocity(state, m.bodyA, p.position));
 }
 
-bool touching(const ContactPoint& p, const ContactSettings& settings) {
-  return p.depth >= -settings.touchingTolerance;
+// Touching, or a speculative gap that the normal velocity u_N closes within the step
+// (-u_N h > gap): an impact at the moment it closes, as in the velocity problem
+// (ContactRowsEmitter.cpp), so a striker found one step ahead by the swept margin
+// (docs/collision.md) still impacts here with its whole speed.
+bool inContact(const ContactPoint& p, double normalVelocity, const ContactSettings& settings,
+               double h) {
+  return p.depth >= -settings.touchingTolerance || -normalVelocity * h > -p.depth;
 }
 
 double impactSpeed(const ContactSettings& settings) {
   return std::max(settings.restitutionThreshold, kRoundOffSpeed);
 }
 
-bool impacts(const BodyState& state, const ContactManifold& m, const ContactSettings& settings) {
+bool impacts(const BodyState& state, const ContactManifold& m, const ContactSettings& settings,
+             double h) {
   if (isKinematic(state, m.bodyA) || isKinematic(state, m.bodyB)) return false;
   if (!isMovable(state, m.bodyA) && !isMovable(state, m.bodyB)) return false;
-  for (const ContactPoint& p : m.activePoints())
-    if (touching(p, settings) && normalVelocity(state, m, p) < -impactSpeed(settings)) return true;
+  for (const ContactPoint& p : m.activePoints()) {
+    const double u = normalVelocity(state, m, p);
+    if (u < -impactSpeed(settings) && inContact(p, u, settings, h)) return true;
+  }
   return false;
 }
 
@@ -85,7 +93,8 @@ Side makeSide(const BodyState& state, const BodyId& body, const ContactManifold&
 // touching point that approaches faster than the threshold (u_N+ >= 0 on the other touching
 // points), impulses >= 0 and complementary (survey sec. 2.1.6), solved by projected Gauss-Seidel
 // on the pair's <= 4 x 4 Delassus matrix W = J M^-1 J^T. Applies the impulses to the velocities.
-void resolvePair(const ContactManifold& m, const ContactSettings& settings, BodyState& state) {
+void resolvePair(const ContactManifold& m, const ContactSettings& settings, double h,
+                 BodyState& state) {
   const Side a = makeSide(state, m.bodyA, m), b = makeSide(state, m.bodyB, m);
   const int n = m.pointCount;
   Eigen::Matrix4d W = Eigen::Matrix4d::Zero();
@@ -98,9 +107,12 @@ void resolvePair(const ContactManifold& m, const ContactSettings& settings, Body
   Eigen::Vector4d lambda = Eigen::Vector4d::Zero();
   std::array<bool, kMaxPoints> active{};
   for (int k = 0; k < n; ++k) {
-    active[k] = touching(m.points[k], settings) && W(k, k) > 0.0;
     u[k] = normalVelocity(state, m, m.points[k]);
-    if (u[k] < -impactSpeed(settings)) target[k] = -m.restitution * u[k];
+    active[k] = inContact(m.points[k], u[k], settings, h) && W(k, k) > 0.0;
+    if (u[k] < -impactSpeed(settings))
+      target[k] = -m.restitution * u[k];
+    else if (m.points[k].depth < -settings.touchingTolerance)
+      target[k] = m.points[k].depth / h;  // a slow speculative point may close its gap, no more
   }
   for (int sweep = 0; sweep < kPairSweeps; ++sweep) {
     double change = 0.0;
@@ -128,7 +140,8 @@ void resolvePair(const ContactManifold& m, const ContactSettings& settings, Body
 
 ImpactPropagationReport propagateImpacts(const Island& island,
                                          const std::vector<ContactManifold>& manifolds,
-                                         const ContactSettings& settings, BodyState& state) {
+                                         const ContactSettings& settings, double h,
+                                         BodyState& state) {
   ImpactPropagationReport report;
   // Sweeps in the island's (deterministic) contact order; each impacting pair is resolved at
   // once, so an impact travels along a chain ordered like the contacts within one sweep.
@@ -136,8 +149,8 @@ ImpactPropagationReport propagateImpacts(const Island& island,
     bool any = false;
     for (const std::int32_t edge : island.constraints) {
       const ContactManifold& m = manifolds[edge];
-      if (!impacts(state, m, settings)) continue;
-      resolvePair(m, settings, state);
+      if (!impacts(state, m, settings, h)) continue;
+      resolvePair(m, settings, h, state);
       ++report.pairImpacts;
       any = true;
     }
@@ -146,7 +159,7 @@ ImpactPropagationReport propagateImpacts(const Island& island,
   }
   report.converged =
       std::none_of(island.constraints.begin(), island.constraints.end(),
-                   [&](std::int32_t edge) { return impacts(state, manifolds[edge], settings); });
+                   [&](std::int32_t edge) { return impacts(state, manifolds[edge], settings, h); });
   return report;
 }
 

@@ -7,8 +7,9 @@
 // exchange velocities and Newton's cradle sends the last ball off alone (SCENES.md A7).
 //
 // What takes part: a manifold impacts when one of its points approaches faster than the
-// restitution threshold while touching (gap <= touchingTolerance; wider gaps stay speculative
-// points of the velocity problem and impact in a later step). The pair problem is frictionless
+// restitution threshold while touching (gap <= touchingTolerance) or while its speculative gap
+// closes within the step h (-u_N h > gap; wider gaps stay speculative points of the velocity
+// problem). The pair problem is frictionless
 // (friction acts in the velocity problem that follows) and skips kinematic bodies (link proxies
 // of trees and user-driven bodies: their contacts keep the simultaneous law). Joints are not seen
 // here; they act in the velocity problem.
@@ -31,7 +32,7 @@ struct ImpactPropagationReport {
 /// the velocities of `state` (v* before the velocity problem).
 ImpactPropagationReport propagateImpacts(const Island& island,
                                          const std::vector<geometry::ContactManifold>& manifolds,
-                                         const ContactSettings& settings,
+                                         const ContactSettings& settings, double h,
                                          geometry::BodyState& state);
 
 }  // namespace coulomb::engine

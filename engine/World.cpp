@@ -256,11 +256,13 @@ StepReport World::step(double h) {
       ++report.kinematicBodies;
   }
 
-  quarantine_.begin(state_, articulations_);                                        // last good
-  integrators::predictFreeVelocities(state_, settings_.gravity, h);                 // v*
-  articulations_.predictVelocities(settings_.gravity, h, state_);                   // trees' v*
-  guard("after the velocity prediction", report);                                   // bad v*
-  collision_.step(colliders_, state_.poses, [this](const auto& a, const auto& b) {  // manifolds
+  quarantine_.begin(state_, articulations_);                         // last good
+  integrators::predictFreeVelocities(state_, settings_.gravity, h);  // v*
+  articulations_.predictVelocities(settings_.gravity, h, state_);    // trees' v*
+  guard("after the velocity prediction", report);                    // bad v*
+  // Manifolds; speculative margins swept by v* (docs/collision.md).
+  const geometry::SweepMotion sweep{state_.linearVelocities, state_.angularVelocities, h};
+  collision_.step(colliders_, state_.poses, sweep, [this](const auto& a, const auto& b) {
     if (!articulations_.keepPair(a.body.index, b.body.index)) return false;
     if (quarantine_.isolated(a.body.index) || quarantine_.isolated(b.body.index)) return false;
     return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index) ||
@@ -325,7 +327,7 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
   const std::size_t jointBlocks = all.blocks.size();  // joint rows first, then the contacts
   const Island contactPart = joints_.contactPart(bodyPart);
   if (settings_.contact.impactLaw == ImpactLaw::Propagating)  // pairwise impacts change v* first
-    propagateImpacts(contactPart, manifolds, settings_.contact, state_);
+    propagateImpacts(contactPart, manifolds, settings_.contact, h, state_);
   rows = emitContactRows(contactPart, manifolds, state_, settings_.contact, h, sources);
   all.blocks.insert(all.blocks.end(), rows.blocks.begin(), rows.blocks.end());
   const std::size_t treeBlocks = all.blocks.size();  // tree limits and closures last

@@ -34,6 +34,8 @@ std::optional<std::string> WorldSettings::validate() const {
   } else if (!std::isfinite(collision.speculativeMargin) || collision.speculativeMargin < 0.0) {
     out << "speculative margin must be finite and >= 0 m (got " << collision.speculativeMargin
         << ")";
+  } else if (!std::isfinite(collision.speculativeSweep) || collision.speculativeSweep < 0.0) {
+    out << "speculative sweep must be finite and >= 0 (got " << collision.speculativeSweep << ")";
   } else if (auto bad = jointStabilization.validate()) {
     out << "joint stabilization: " << *bad;
   } else if (auto badSleep = sleep.validate()) {

@@ -12,7 +12,9 @@ std::vector<CandidatePair> BroadPhase::update(const std::vector<Collider>& colli
                                               std::span<const Pose> shapePoses,
                                               std::vector<char>& usable, FclScene& scene,
                                               double margin, const PairPredicate& keep,
-                                              std::vector<CollisionFailure>& failures) {
+                                              std::vector<CollisionFailure>& failures,
+                                              std::span<const double> sweeps) {
+  auto sweepOf = [&](std::size_t i) { return i < sweeps.size() ? sweeps[i] : 0.0; };
   std::unordered_map<ColliderId, std::size_t> indexOf;
   indexOf.reserve(colliders.size());
   std::vector<std::size_t> planes, solids;
@@ -21,7 +23,7 @@ std::vector<CandidatePair> BroadPhase::update(const std::vector<Collider>& colli
     const Collider& c = colliders[i];
     try {
       scene.upsert(c.id, c.shape);
-      scene.setPose(c.id, shapePoses[i]);
+      scene.setPose(c.id, shapePoses[i], sweepOf(i));
     } catch (const std::exception& e) {
       failures.push_back({c.id, ColliderId{}, e.what()});
       usable[i] = 0;
@@ -44,7 +46,7 @@ std::vector<CandidatePair> BroadPhase::update(const std::vector<Collider>& colli
       const Aabb box = scene.worldAabb(colliders[s].id);
       const Eigen::Vector3d centre = 0.5 * (box.min + box.max), half = 0.5 * (box.max - box.min);
       const double lowest = plane.normal.dot(centre) - plane.normal.cwiseAbs().dot(half);
-      if (lowest - plane.offset <= margin)
+      if (lowest - plane.offset <= margin + sweepOf(p))  // the box holds the solid's sweep
         ids.emplace_back(std::min(colliders[p].id, colliders[s].id),
                          std::max(colliders[p].id, colliders[s].id));
     }

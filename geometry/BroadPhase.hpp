@@ -21,10 +21,13 @@ class BroadPhase {
   /// Brings `scene` in line with `colliders` (new shapes built, removed colliders dropped, poses
   /// set), refits the tree and returns the filtered candidate pairs. Colliders with
   /// usable[i] == false are left out; a collider FCL rejects is reported and left out too.
+  /// `sweeps[i]` [m] (empty: none) grows collider i's AABB beyond the margin, so every pair
+  /// within margin + sweeps[a] + sweeps[b] is a candidate (SweptMargin.hpp).
   std::vector<CandidatePair> update(const std::vector<Collider>& colliders,
                                     std::span<const Pose> shapePoses, std::vector<char>& usable,
                                     FclScene& scene, double margin, const PairPredicate& keep,
-                                    std::vector<CollisionFailure>& failures);
+                                    std::vector<CollisionFailure>& failures,
+                                    std::span<const double> sweeps = {});
 };
 
 }  // namespace coulomb::geometry

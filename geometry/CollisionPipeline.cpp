@@ -42,6 +42,7 @@ std::optional<std::string> CollisionPipeline::validateCollider(const Collider& c
 
 const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Collider>& colliders,
                                                             std::span<const Pose> bodyPoses,
+                                                            const SweepMotion& motion,
                                                             const PairPredicate& keepPair) {
   diagnostics_.failures.clear();
   diagnostics_.stats = {};
@@ -86,12 +87,13 @@ const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Co
     }
   }
 
+  colliderSweeps(colliders, usable_, motion, settings_.speculativeSweep, sweeps_);
   const std::vector<CandidatePair> pairs =
       broadPhase_.update(colliders, shapePoses_, usable_, scene_, settings_.speculativeMargin,
-                         keepPair, diagnostics_.failures);
+                         keepPair, diagnostics_.failures, sweeps_);
   fresh_.clear();
   narrowPhase_.collide(pairs, colliders, shapePoses_, bodyPoses, scene_, fresh_,
-                       diagnostics_.failures);
+                       diagnostics_.failures, sweeps_);
   dropCoveredCapsuleEnds(colliders, shapePoses_, fresh_);  // ghost points of capsule chains
 
   diagnostics_.stats.candidatePairs = pairs.size();

@@ -8,6 +8,7 @@
 #include <coulomb/geometry/ContactManifold.hpp>
 #include <coulomb/geometry/FclAdapter.hpp>
 #include <coulomb/geometry/NarrowPhase.hpp>
+#include <coulomb/geometry/SweptMargin.hpp>
 
 #include <optional>
 #include <span>
@@ -20,6 +21,12 @@ struct CollisionSettings {
   /// [m] Points closer than this are kept with a negative depth (speculative contacts), and
   /// AABBs are fattened by it, so a resting contact does not flicker on and off.
   double speculativeMargin = 0.005;
+  /// [-] Velocity sweep of the margin: a pair's margin grows by this factor times the distance
+  /// its bodies can travel in the step, h (|v_A| + |w_A| r_A + |v_B| + |w_B| r_B) (v* of the
+  /// step; SweptMargin.hpp), so bodies approaching faster than margin/h still get their contact
+  /// rows before they meet. Default 1: exactly the travel; 0: the fixed margin alone (the
+  /// behaviour before; a box pile then sinks 5 cm into its floor, docs/conformance.md).
+  double speculativeSweep = 1.0;
   /// [m] Distance within which a point whose feature id changed still inherits the old impulses.
   double matchDistance = 0.002;
   /// Contacts FCL may report per mesh pair before it stops (it truncates, FCL-NOTES.md 4.4).
@@ -41,12 +48,20 @@ class CollisionPipeline {
  public:
   explicit CollisionPipeline(CollisionSettings settings = {});
 
-  /// One collision step. `bodyPoses[k]` is the pose of the body with BodyId.index == k.
+  /// One collision step. `bodyPoses[k]` is the pose of the body with BodyId.index == k and
+  /// `motion` its velocities over the step (sweeps the margins; empty: the fixed margin).
   /// A collider with a bad shape, an unknown body or a non-finite pose is skipped and reported;
   /// a pair FCL fails on is skipped and reported; nothing throws.
   const std::vector<ContactManifold>& step(const std::vector<Collider>& colliders,
                                            std::span<const Pose> bodyPoses,
+                                           const SweepMotion& motion,
                                            const PairPredicate& keepPair = {});
+  /// The same with the fixed margin alone (no velocities).
+  const std::vector<ContactManifold>& step(const std::vector<Collider>& colliders,
+                                           std::span<const Pose> bodyPoses,
+                                           const PairPredicate& keepPair = {}) {
+    return step(colliders, bodyPoses, SweepMotion{}, keepPair);
+  }
 
   [[nodiscard]] const CollisionDiagnostics& diagnostics() const { return diagnostics_; }
   /// Persistent manifolds; the solver writes applied impulses into their points.
@@ -71,6 +86,7 @@ class CollisionPipeline {
   CollisionDiagnostics diagnostics_;
   std::vector<Pose> shapePoses_;
   std::vector<char> usable_;
+  std::vector<double> sweeps_;  // [m] per collider (SweptMargin.hpp)
   std::vector<ContactManifold> fresh_;
 };
 

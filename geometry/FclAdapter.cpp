@@ -153,9 +153,9 @@ struct FclScene::Impl {
   // The tree re-inserts a leaf whenever its box changes at all (FCL-NOTES.md 6), so each leaf
   // holds a box fattened by `slack` beyond the margin, replaced only when the shape leaves it
   // (Box2D's b2_aabbMargin idea). A resting body then costs no tree work.
-  void place(Entry& entry) {
+  void place(Entry& entry, double sweep) {
     const fcl::AABBd tight = tightAabb(*entry.shape, *entry.object);
-    const fcl::Vector3d grow = fcl::Vector3d::Constant(margin);
+    const fcl::Vector3d grow = fcl::Vector3d::Constant(margin + sweep);
     const fcl::AABBd needed(tight.min_ - grow, tight.max_ + grow);
     if (!entry.hasFat || !entry.fat.contain(needed)) {
       const fcl::Vector3d slack = fcl::Vector3d::Constant(2.0 * margin + 1e-4);
@@ -196,7 +196,7 @@ void FclScene::upsert(ColliderId id, const std::shared_ptr<const Shape>& shape) 
   }
   entry->object = std::make_unique<TreeObject>(entry->geometry);
   entry->object->setUserData(entry.get());
-  impl_->place(*entry);
+  impl_->place(*entry, 0.0);
 
   erase(id);
   if (!entry->isPlane) impl_->pending.push_back(entry->object.get());
@@ -229,7 +229,7 @@ std::vector<ColliderId> FclScene::ids() const {
   return out;
 }
 
-void FclScene::setPose(ColliderId id, const Pose& worldPose) {
+void FclScene::setPose(ColliderId id, const Pose& worldPose, double sweep) {
   if (!worldPose.allFinite())
     throw std::invalid_argument(name(id) + ": world pose is not finite (NaN or inf)");
   Impl::Entry& entry = impl_->at(id);
@@ -237,7 +237,7 @@ void FclScene::setPose(ColliderId id, const Pose& worldPose) {
   transform.linear() = worldPose.rotation.normalized().toRotationMatrix();  // fcl#567
   transform.translation() = worldPose.position;
   entry.object->setTransform(transform);
-  impl_->place(entry);
+  impl_->place(entry, std::isfinite(sweep) ? std::max(0.0, sweep) : 0.0);
 }
 
 void FclScene::updateTree() {

@@ -65,7 +65,8 @@ class FclScene {
   [[nodiscard]] std::vector<ColliderId> ids() const;  // sorted
 
   /// World pose of the collider's shape frame; throws std::invalid_argument if not finite.
-  void setPose(ColliderId id, const Pose& worldPose);
+  /// `sweep` [m] grows its AABB beyond the margin (velocity-swept margin, SweptMargin.hpp).
+  void setPose(ColliderId id, const Pose& worldPose, double sweep = 0.0);
   /// Refits the tree after setPose calls (one rebalance for all moved objects).
   void updateTree();
   /// Every pair of tree objects whose (fattened) AABBs overlap, as (lower id, higher id), sorted.

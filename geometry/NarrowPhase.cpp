@@ -102,12 +102,12 @@ int closedForm(const Shape& first, const Pose& p1, const Shape& second, const Po
 
 bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collider& b,
                               const Pose& poseB, const FclScene& scene, PairContact& out,
-                              std::string& error) const {
+                              std::string& error, double margin) const {
   out.points.clear();
   error.clear();
   const bool swap = a.shape->index() > b.shape->index();
-  const int handled = swap ? closedForm(*b.shape, poseB, *a.shape, poseA, settings_.margin, out)
-                           : closedForm(*a.shape, poseA, *b.shape, poseB, settings_.margin, out);
+  const int handled = swap ? closedForm(*b.shape, poseB, *a.shape, poseA, margin, out)
+                           : closedForm(*a.shape, poseA, *b.shape, poseB, margin, out);
   if (handled >= 0) {
     if (swap) out.normal = -out.normal;
     return handled == 1 && !out.points.empty();
@@ -117,10 +117,10 @@ bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collid
     error = "mesh-mesh contact is not supported (FCL-NOTES.md 4.5): use convex pieces";
     return false;
   }
-  return viaFcl(a, b, scene, out, error);
+  return viaFcl(a, b, scene, margin, out, error);
 }
 
-bool NarrowPhase::viaFcl(const Collider& a, const Collider& b, const FclScene& scene,
+bool NarrowPhase::viaFcl(const Collider& a, const Collider& b, const FclScene& scene, double margin,
                          PairContact& out, std::string& error) const {
   const bool mesh = a.shape->index() == kMesh || b.shape->index() == kMesh;
   FclCollideResult hit = scene.collide(a.id, b.id, mesh ? settings_.maxMeshContacts : 4, injector_);
@@ -154,7 +154,7 @@ bool NarrowPhase::viaFcl(const Collider& a, const Collider& b, const FclScene& s
     return false;
   }
   const Eigen::Vector3d d = gap.pointB - gap.pointA;
-  if (gap.distance > settings_.margin || gap.distance <= 0.0 || d.norm() < 1e-12) return false;
+  if (gap.distance > margin || gap.distance <= 0.0 || d.norm() < 1e-12) return false;
   out.normal = d.normalized();
   out.points.push_back({0.5 * (gap.pointA + gap.pointB), -gap.distance, 0});
   return true;
@@ -164,7 +164,7 @@ void NarrowPhase::collide(std::span<const CandidatePair> pairs,
                           const std::vector<Collider>& colliders, std::span<const Pose> shapePoses,
                           std::span<const Pose> bodyPoses, const FclScene& scene,
                           std::vector<ContactManifold>& out,
-                          std::vector<CollisionFailure>& failures) {
+                          std::vector<CollisionFailure>& failures, std::span<const double> sweeps) {
   std::string error;
   for (const CandidatePair& pair : pairs) {
     const Collider& a = colliders[pair.a];
@@ -173,8 +173,10 @@ void NarrowPhase::collide(std::span<const CandidatePair> pairs,
       failures.push_back({a.id, b.id, "body index out of range of the body poses"});
       continue;
     }
+    double margin = settings_.margin;
+    if (pair.a < sweeps.size() && pair.b < sweeps.size()) margin += sweeps[pair.a] + sweeps[pair.b];
     const bool touching =
-        contactPair(a, shapePoses[pair.a], b, shapePoses[pair.b], scene, scratch_, error);
+        contactPair(a, shapePoses[pair.a], b, shapePoses[pair.b], scene, scratch_, error, margin);
     if (!error.empty()) {
       failures.push_back({a.id, b.id, error});
       continue;

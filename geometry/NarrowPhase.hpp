@@ -39,23 +39,31 @@ class NarrowPhase {
   /// Appends one manifold per touching pair to `out` (in the order of `pairs`) and one entry per
   /// failed pair to `failures`. `shapePoses` and `bodyPoses` are indexed like `colliders` and by
   /// BodyId.index respectively.
+  /// `sweeps` (indexed like `colliders`; empty: none) widen each pair's margin to
+  /// margin + sweeps[a] + sweeps[b] (velocity-swept speculative margin, SweptMargin.hpp).
   void collide(std::span<const CandidatePair> pairs, const std::vector<Collider>& colliders,
                std::span<const Pose> shapePoses, std::span<const Pose> bodyPoses,
                const FclScene& scene, std::vector<ContactManifold>& out,
-               std::vector<CollisionFailure>& failures);
+               std::vector<CollisionFailure>& failures, std::span<const double> sweeps = {});
 
   /// Raw contact of one pair, normal from a to b (a.id < b.id). Returns false when the pair is
-  /// farther apart than the margin; sets `error` (and returns false) when the pair failed.
+  /// farther apart than `margin` (default: the settings' margin); sets `error` (and returns
+  /// false) when the pair failed.
   bool contactPair(const Collider& a, const Pose& poseA, const Collider& b, const Pose& poseB,
-                   const FclScene& scene, PairContact& out, std::string& error) const;
+                   const FclScene& scene, PairContact& out, std::string& error) const {
+    return contactPair(a, poseA, b, poseB, scene, out, error, settings_.margin);
+  }
+  bool contactPair(const Collider& a, const Pose& poseA, const Collider& b, const Pose& poseB,
+                   const FclScene& scene, PairContact& out, std::string& error,
+                   double margin) const;
 
   /// Test hook: called inside FCL's guarded region before each FCL query.
   void setFaultInjector(FclFaultInjector injector) { injector_ = std::move(injector); }
   [[nodiscard]] const NarrowPhaseSettings& settings() const { return settings_; }
 
  private:
-  bool viaFcl(const Collider& a, const Collider& b, const FclScene& scene, PairContact& out,
-              std::string& error) const;
+  bool viaFcl(const Collider& a, const Collider& b, const FclScene& scene, double margin,
+              PairContact& out, std::string& error) const;
 
   NarrowPhaseSettings settings_;
   FclFaultInjector injector_;

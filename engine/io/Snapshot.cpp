@@ -42,6 +42,7 @@ void transferSettings(Ar& ar, WorldSettings& s) {
   io(ar, s.contact.touchingTolerance);
   io(ar, s.contact.maxImpactSweeps);
   io(ar, s.collision.speculativeMargin);
+  io(ar, s.collision.speculativeSweep);
   io(ar, s.collision.matchDistance);
   io(ar, s.collision.maxMeshContacts);
   io(ar, s.sleep.enabled);
@@ -164,6 +165,7 @@ struct SnapshotAccess {
       if (auto bad = settings.validate()) ar.fail("corrupt settings: " + *bad);
       const auto& c = w.collision_.settings();
       if (settings.collision.speculativeMargin != c.speculativeMargin ||
+          settings.collision.speculativeSweep != c.speculativeSweep ||
           settings.collision.matchDistance != c.matchDistance ||
           settings.collision.maxMeshContacts != c.maxMeshContacts)
         ar.fail(

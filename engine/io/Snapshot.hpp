@@ -30,7 +30,7 @@
 
 namespace coulomb::engine::io {
 
-inline constexpr std::uint32_t kSnapshotVersion = 1;
+inline constexpr std::uint32_t kSnapshotVersion = 2;  // 2: collision.speculativeSweep
 
 /// The snapshot of `world` as bytes (header included).
 [[nodiscard]] std::vector<std::uint8_t> saveSnapshot(const World& world);
