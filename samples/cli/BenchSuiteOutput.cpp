@@ -139,15 +139,13 @@ void writeBenchMarkdown(std::ostream& out, const std::vector<BenchRecord>& recor
            r.status + (r.note.empty() || r.status.empty() ? "" : "; ") + r.note + " |";
   };
   const std::string sceneRule = "|---|---|---:|---:|---|---|---:|---:|---:|---|\n";
-  if (present.count("scenes")) {
-    out << "\n### Scenes (median ms/step over the repeats)\n\n| scene" << sceneHeader << sceneRule;
-    rows("scenes", sceneLine);
-  }
-  if (present.count("sweep")) {
-    out << "\n### Iteration-cap sweep (each solver alone, tolerance tiny)\n\n| scene" << sceneHeader
-        << sceneRule;
-    rows("sweep", sceneLine);
-  }
+  const auto sceneTable = [&](const std::string& part, const std::string& title) {
+    if (!present.count(part)) return;
+    out << "\n### " << title << sceneHeader << sceneRule;
+    rows(part, sceneLine);
+  };
+  sceneTable("scenes", "Scenes (median ms/step over the repeats)\n\n| scene");
+  sceneTable("sweep", "Iteration-cap sweep (each solver alone, tolerance tiny)\n\n| scene");
   if (present.count("nu")) {
     out << "\n### ac_newton iterations against nu (island solves binned by nu to 0.01)\n\n"
            "| scene | nu | solves | iterations mean / max | residual max | converged |\n"
@@ -158,11 +156,7 @@ void writeBenchMarkdown(std::ostream& out, const std::vector<BenchRecord>& recor
              " | " + r.status + " |";
     });
   }
-  if (present.count("joints")) {
-    out << "\n### Ball chains (SCENES.md A6, dt 0.01; energy change / S)\n\n| chain" << sceneHeader
-        << sceneRule;
-    rows("joints", sceneLine);
-  }
+  sceneTable("joints", "Ball chains (SCENES.md A6, dt 0.01; energy change / S)\n\n| chain");
   if (present.count("aba")) {
     out << "\n### ABA on serial chains\n\n| chain | links | ms per ABA | ns per link | "
            "abs(M qdd + h - tau) |\n|---|---:|---:|---:|---:|\n";

@@ -68,6 +68,14 @@ BenchRecord measureScene(const std::string& part, const engine::io::Scene& scene
   return recordOf(part, row, variant, dynamicBodies(scene), o.repeats, samples::median(times));
 }
 
+/// Checks that every run builds (bad input fails before hours of running), then measures them.
+void measureAll(const std::string& part, const std::vector<engine::io::Scene>& runs,
+                const SuiteOptions& o, std::vector<BenchRecord>& out) {
+  for (const engine::io::Scene& scene : runs) buildWorldFor(scene);
+  BenchProgress progress(std::cerr, part, runs.size() * static_cast<std::size_t>(o.repeats));
+  for (const engine::io::Scene& scene : runs) out.push_back(measureScene(part, scene, o, progress));
+}
+
 }  // namespace
 
 void runScenesPart(const SuiteOptions& o, std::vector<BenchRecord>& out) {
@@ -80,10 +88,7 @@ void runScenesPart(const SuiteOptions& o, std::vector<BenchRecord>& out) {
       overrides.solver = solver;
       runs.push_back(loadScene(name, overrides));
     }
-  for (const engine::io::Scene& scene : runs) buildWorldFor(scene);  // fail before running
-  BenchProgress progress(std::cerr, "scenes", runs.size() * static_cast<std::size_t>(o.repeats));
-  for (const engine::io::Scene& scene : runs)
-    out.push_back(measureScene("scenes", scene, o, progress));
+  measureAll("scenes", runs, o, out);
 }
 
 void runSweepPart(const SuiteOptions& o, std::vector<BenchRecord>& out) {
@@ -108,9 +113,7 @@ void runSweepPart(const SuiteOptions& o, std::vector<BenchRecord>& out) {
         runs.push_back(loadScene(name, overrides));
       }
     }
-  BenchProgress progress(std::cerr, "sweep", runs.size() * static_cast<std::size_t>(o.repeats));
-  for (const engine::io::Scene& scene : runs)
-    out.push_back(measureScene("sweep", scene, o, progress));
+  measureAll("sweep", runs, o, out);
 }
 
 void runNuScenesPart(const SuiteOptions& o, std::vector<BenchRecord>& out) {
