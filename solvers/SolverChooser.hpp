@@ -37,8 +37,10 @@ struct ChooserSettings {
   // [sweeps] islands with a body-space W (large islands of free bodies) that are well-posed
   // enough for Newton first get a bgs try of this many sweeps: a warm-started resting stack is
   // solved in a few sweeps of O(contacts) each, where one Newton step factorizes W (a dense
-  // 240 x 240 LU on the 20-box tower). Default 30 (docs/benchmarks.md, "Body-space sweeps").
-  int factoredTrySweeps = 30;
+  // 240 x 240 LU on the 20-box tower). Default 0 = off: with 30, the 10-box tower's answers at
+  // 1e-6 (bgs) instead of ~1e-7 (Newton) let its energy rise 2.5e-9 J above E(0), beyond the
+  // stability case's 1e-9 E(0) bound (docs/benchmarks.md, "Body-space sweeps").
+  int factoredTrySweeps = 0;
   // [-] mass ratio kappa above which Newton goes first whatever nu (Gauss-Seidel stagnates on
   // large mass ratios, SOLVERS.md section 9). Default 1e3.
   double newtonMassRatio = 1e3;

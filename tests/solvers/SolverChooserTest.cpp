@@ -80,13 +80,16 @@ TEST(SolverChooser, BodySpaceIslandsTryShortBgsBeforeNewton) {
   for (int c = 0; c < 20; ++c) factors->setSide(c, 1, c, J, J.transpose());
   ContactProblem p = diagonalProblem(20, false);
   p.W = DelassusOperator::bodySpace(factors);
-  const SolvePlan plan = SolverChooser().choose(p, {120}, "auto", {});
+  EXPECT_EQ(SolverChooser().choose(p, {120}, "auto", {}).solvers.front(), "ac_newton");  // off
+  ChooserSettings s;
+  s.factoredTrySweeps = 30;
+  const SolvePlan plan = SolverChooser(s).choose(p, {120}, "auto", {});
   EXPECT_TRUE(plan.features.factored);
   ASSERT_EQ(plan.solvers.size(), 3u);
   EXPECT_EQ(plan.solvers.front(), "bgs") << plan.reason;
   EXPECT_EQ(plan.solvers[1], "ac_newton");
   ASSERT_FALSE(plan.iterationCaps.empty());
-  EXPECT_EQ(plan.iterationCaps.front(), ChooserSettings{}.factoredTrySweeps);
+  EXPECT_EQ(plan.iterationCaps.front(), 30);
   EXPECT_NEAR(plan.features.massRatio, 1.0, 1e-12);  // the diagonal read from the factors
 }
 
