@@ -111,24 +111,48 @@ TEST(DegenerateCases, MassRatioOfAMillionStaysFiniteAndBounded) {
   EXPECT_LT(world.linearVelocity(heavy).norm(), 0.05);
 }
 
-TEST(DegenerateCases, HugeVelocitiesStayFinite) {
-  engine::World world;
+// 10 km/s sideways at a box and 10 km/s straight down into the ground. With the velocity-swept
+// speculative margin (CollisionSettings::speculativeSweep, default 1) the contact row exists before
+// the bodies meet, so the bullet hits the wall instead of tunnelling; with the fixed margin alone
+// (sweep 0: no continuous collision detection) it passes through. Either way the state stays finite
+// and nothing is quarantined; the half-space catches the meteor.
+namespace {
+struct HugeVelocityOutcome {
+  double bulletX, wallX, meteorZ;
+};
+
+HugeVelocityOutcome shootAtHugeVelocities(double sweep) {
+  engine::WorldSettings settings;
+  settings.collision.speculativeSweep = sweep;
+  engine::World world(settings);
   world.createBody(ground());
   const geometry::BodyId wall = world.createBody(box("wall", {1.0, 0.0, 0.5}, 0.1));
-  // 10 km/s sideways through a box (no continuous collision detection: it passes through) and
-  // 10 km/s straight down into the ground (the half-space catches it within a step or two).
   const geometry::BodyId bullet = world.createBody(sphere("bullet", {0.0, 0.0, 0.5}, 0.05));
   const geometry::BodyId meteor = world.createBody(sphere("meteor", {5.0, 0.0, 1.0}, 0.05));
   world.setVelocity(bullet, Eigen::Vector3d(1e4, 0.0, 0.0), Eigen::Vector3d::Zero());
   world.setVelocity(meteor, Eigen::Vector3d(0.0, 0.0, -1e4), Eigen::Vector3d::Zero());
   for (int n = 0; n < 100; ++n) EXPECT_TRUE(world.step().quarantined.empty());
-  ASSERT_TRUE(stateIsFinite(world));
-  EXPECT_GT(world.pose(bullet).position.x(), 1000.0);  // tunnelled through the wall
-  EXPECT_NEAR(world.pose(wall).position.x(), 1.0, 1e-6);
-  // The meteor ends above the ground plane, not below it.
-  std::printf("10 km/s: bullet at x %.1f m, meteor at z %.4f m\n", world.pose(bullet).position.x(),
-              world.pose(meteor).position.z());
-  EXPECT_GT(world.pose(meteor).position.z(), 0.0);
+  EXPECT_TRUE(stateIsFinite(world));
+  const HugeVelocityOutcome out{world.pose(bullet).position.x(), world.pose(wall).position.x(),
+                                world.pose(meteor).position.z()};
+  std::printf("10 km/s, sweep %g: bullet at x %.1f m, wall at x %.1f m, meteor at z %.4f m\n",
+              sweep, out.bulletX, out.wallX, out.meteorZ);
+  return out;
+}
+}  // namespace
+
+TEST(DegenerateCases, HugeVelocitiesStayFinite) {
+  const HugeVelocityOutcome swept = shootAtHugeVelocities(1.0);
+  // Hit, not tunnelled: the bullet stays behind the wall (centres at least the two half sizes,
+  // 0.15 m, apart) and has pushed it along +x.
+  EXPECT_LT(swept.bulletX, swept.wallX - 0.15 + 1e-3);
+  EXPECT_GT(swept.wallX, 2.0);
+  EXPECT_GT(swept.meteorZ, 0.0);  // above the ground plane, not below it
+
+  const HugeVelocityOutcome fixedMargin = shootAtHugeVelocities(0.0);
+  EXPECT_GT(fixedMargin.bulletX, 1000.0);  // tunnelled through the wall
+  EXPECT_NEAR(fixedMargin.wallX, 1.0, 1e-6);
+  EXPECT_GT(fixedMargin.meteorZ, 0.0);
 }
 
 TEST(DegenerateCases, ASolverAtItsIterationLimitEveryStepKeepsTheStackStanding) {
