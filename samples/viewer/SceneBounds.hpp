@@ -11,9 +11,6 @@ struct BoundingSphere {
   double radius = 1.0;  // [m]
 };
 
-/// Radius of a sphere about the shape's origin that holds the shape; 0 for a plane (infinite).
-double shapeRadius(const geometry::Shape& shape);
-
 /// The box around every collider of the dynamic and kinematic bodies (robot links are kinematic
 /// proxies) and around the static colliders that are props rather than ground (each bounding
 /// radius under 10 m: the double loop's 1720 rail capsules count, a 50 m floor box or a plane

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <coulomb/geometry/Shape.hpp>
+#include <coulomb/geometry/SweptMargin.hpp>
 
 #include <Eigen/Core>
 #include <cmath>
@@ -83,7 +84,7 @@ TEST(ShapeMesh, PlaneIsASquareOnItsSurface) {
     EXPECT_NEAR(at(mesh.positions, k).head<2>().cwiseAbs().maxCoeff(), 3.0, 1e-6);
     EXPECT_NEAR(at(mesh.normals, k).z(), 1.0, 1e-6);
   }
-  EXPECT_EQ(shapeRadius(geometry::Plane{}), 0.0);  // never framed by the camera
+  EXPECT_EQ(geometry::boundingRadius(geometry::Plane{}), 0.0);  // never framed by the camera
 }
 
 }  // namespace
