@@ -138,7 +138,8 @@ void registerBenchCommand(CLI::App& app) {
                       "Folder of .fc3d problems (default: ../shared/fc3d beside the checkout)");
   command->add_option("--scenes", o->scenes, "Comma-separated scenes (replaces the size's)");
   command->add_option("--solvers", o->solvers, "Comma-separated solvers (replaces the part's)");
-  command->add_option("--steps", o->steps, "Steps per scene or chain run (default: the size's)");
+  command->add_option("--steps", o->steps, "Steps per scene or chain run (default: the size's)")
+      ->check(CLI::PositiveNumber);
   command
       ->add_option("--time-cap", o->timeCap,
                    "Stop a run when its summed step time exceeds this [s] (SCENES.md section 0)")

@@ -55,8 +55,8 @@ void registerCompareCommand(CLI::App& app) {
                    "Comma-separated solvers (auto, names of `coulomb solvers`, NAME! for no "
                    "fallback)")
       ->capture_default_str();
-  command->add_option("--steps", options->overrides.steps,
-                      "Number of steps (default: the scene's)");
+  command->add_option("--steps", options->overrides.steps, "Number of steps (default: the scene's)")
+      ->check(CLI::PositiveNumber);
   command->add_option("--dt", options->overrides.timeStep, "Time step [s] (default: the scene's)");
   command->add_option("--max-iter", options->overrides.maxIterations,
                       "Iteration cap per island solve (0 = each solver's default)");

@@ -173,8 +173,9 @@ void registerSceneCommands(CLI::App& app) {
                          "NAME! (no fallback) or a chain a,b,c (default: the scene's)");
   runCommand->add_option("--dt", options->overrides.timeStep,
                          "Time step [s] (default: the scene's)");
-  runCommand->add_option("--steps", options->overrides.steps,
-                         "Number of steps (default: the scene's)");
+  runCommand
+      ->add_option("--steps", options->overrides.steps, "Number of steps (default: the scene's)")
+      ->check(CLI::PositiveNumber);
   runCommand->add_option("--mu", options->overrides.friction,
                          "Friction coefficient of every material of the scene (every shape of "
                          "every body and link; default: the scene's)");

@@ -116,8 +116,10 @@ void registerViewCommands(CLI::App& app) {
   CLI::App* viewCommand = app.add_subcommand(
       "view", "Watch a scene in a window: orbit camera, run controls, solver reports (viewer)");
   addSceneOptions(viewCommand, *viewOptions);
-  viewCommand->add_option("--frames", viewOptions->frames,
-                          "Draw this many frames (stepping), then exit (for CI under xvfb-run)");
+  viewCommand
+      ->add_option("--frames", viewOptions->frames,
+                   "Draw this many frames (stepping), then exit (for CI under xvfb-run)")
+      ->check(CLI::PositiveNumber);
   viewCommand
       ->add_option("--screenshot", viewOptions->screenshot,
                    "Write the last frame as PNG (with --frames)")
@@ -128,8 +130,10 @@ void registerViewCommands(CLI::App& app) {
   CLI::App* renderCommand = app.add_subcommand(
       "render", "Render a scene offscreen to PNG frames or an animated GIF (no display needed)");
   addSceneOptions(renderCommand, *renderOptions);
-  renderCommand->add_option("--steps", renderOptions->overrides.steps,
-                            "Number of steps (default: the scene's)");
+  renderCommand
+      ->add_option("--steps", renderOptions->overrides.steps,
+                   "Number of steps (default: the scene's)")
+      ->check(CLI::PositiveNumber);
   renderCommand->add_option("--every", renderOptions->every, "A frame every K steps (default 1)")
       ->check(CLI::PositiveNumber);
   renderCommand
