@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 
 namespace coulomb::engine {
 namespace {
@@ -15,6 +16,46 @@ Eigen::Vector3d pointVelocity(const geometry::BodyState& state, const geometry::
   const std::uint32_t i = body.index;
   return state.linearVelocities[i] +
          state.angularVelocities[i].cross(point - state.poses[i].position);
+}
+
+Eigen::Vector3d linearOf(const geometry::BodyState& state, const geometry::BodyId& body) {
+  if (!body.valid() || body.index >= state.size()) return Eigen::Vector3d::Zero();
+  return state.linearVelocities[body.index];
+}
+
+Eigen::Vector3d angularOf(const geometry::BodyState& state, const geometry::BodyId& body) {
+  if (!body.valid() || body.index >= state.size()) return Eigen::Vector3d::Zero();
+  return state.angularVelocities[body.index];
+}
+
+// Elastic turning (ContactSettings::elasticTurning, docs/tuning.md): the approach velocity of a
+// persistent point (one of the last solve) that the turning of its normal since then causes,
+// u_turn < 0, or 0. `approach` is n . v_rel at the point with the velocities v* of this step.
+//
+// Let v_k be the velocities at the start of the step (v* = v_k + h a, a = gravity and applied
+// forces). The approach at v_k, n . v_rel(p, v_k), is the last solve's normal velocity u_old
+// (stored with the point: exact where the solve pushed, u_N+ = -bias; the approach before the
+// solve where it did not, exact unless the island's other impulses changed it) plus what the new
+// geometry changes: n . v_rel(p, v) - n_old .
+// v_rel(p_old, v), the same for v_k and v* up to (n - n_old) . h a, so gravity cancels. A
+// separating u_old > 0 (left by the last reflection) belongs to the approach; a negative one (a
+// speculative gap being closed) is not turning and stays inelastic:
+//   u_turn = min(0, [n . v_rel(p, v*) - n_old . v_rel(p_old, v*)] + max(0, u_old)).
+// For a sphere the moments r x n vanish, so a ball rolling without slip on a concave rail gets
+// u_turn = (n - n_old) . v_centre + max(0, u_old): the reflection of the chord of an inscribed
+// polygon. (Evaluating both normals at the new point instead would give ~0 for a rolling ball,
+// whose contact point velocity is ~0; evaluating n_old . v_k without the max would add the last
+// reflection to the next one and grow without bound.)
+double turningApproach(const geometry::ContactManifold& manifold,
+                       const geometry::ContactPoint& point, const geometry::BodyState& state,
+                       double approach) {
+  if (point.solvedNormal.squaredNorm() < 0.25) return 0.0;
+  if (manifold.normal.dot(point.solvedNormal) < std::cos(kElasticTurningMaxAngle)) return 0.0;
+  const Eigen::Vector3d& n0 = point.solvedNormal;
+  const double old = n0.dot(linearOf(state, manifold.bodyB) - linearOf(state, manifold.bodyA)) +
+                     angularOf(state, manifold.bodyB).dot(point.solvedMomentB) -
+                     angularOf(state, manifold.bodyA).dot(point.solvedMomentA);
+  return std::min(0.0, approach - old + std::max(0.0, point.solvedNormalVelocity));
 }
 
 Eigen::Vector3d centreOf(const geometry::BodyState& state, const geometry::BodyId& body) {
@@ -64,6 +105,15 @@ joints::RowSet emitContactRows(const Island& island,
       if (gap > settings.touchingTolerance && settings.speculativeContacts &&
           !(impact && -approach * h > gap))
         bias = gap / h;
+      // Elastic turning: u_N+ >= -u_turn, the part of the approach that the turning of a
+      // persistent contact's normal causes, reflected (it overrides a speculative gap's
+      // allowance: the chords of a concave surface end inside it by ~R theta^2 / 8).
+      if (settings.elasticTurning) {
+        const double turn = gap > settings.touchingTolerance && -approach * h <= gap
+                                ? 0.0
+                                : turningApproach(manifold, point, state, approach);
+        if (turn < 0.0) bias = std::min(bias, turn);
+      }
       bias += baumgarteBias(settings.penetration, point.depth, h);
       frame.normalVelocityBias = bias;
 
@@ -74,7 +124,7 @@ joints::RowSet emitContactRows(const Island& island,
         if (block.rows() == 3) block.warmStart.tail<2>() = point.tangentImpulse;
       }
       rows.blocks.push_back(std::move(block));
-      sources.push_back({m, p, point.depth});
+      sources.push_back({m, p, point.depth, approach});
     }
   }
   return rows;
@@ -87,6 +137,14 @@ void storeContactImpulses(const joints::RowSet& rows, const std::vector<RowBlock
   for (std::size_t k = 0; k < rows.blocks.size(); ++k) {
     geometry::ContactPoint& point = manifolds[sources[k].manifold].points[sources[k].point];
     point.normalImpulse = lambda[slots[k].offset];
+    // The normal row just solved, for the next step's elastic turning (turningApproach): its
+    // Jacobian holds (-n, -r_A x n) and (n, r_B x n), and a loaded point (impulse > 0) leaves
+    // the solve with u_N + bias = 0 (complementarity), so u_N+ = -bias.
+    const joints::RowBlock& block = rows.blocks[k];
+    point.solvedNormal = block.jacobianB.row(0).head<3>().transpose();
+    point.solvedMomentA = -block.jacobianA.row(0).tail<3>().transpose();
+    point.solvedMomentB = block.jacobianB.row(0).tail<3>().transpose();
+    point.solvedNormalVelocity = point.normalImpulse > 0.0 ? -block.bias[0] : sources[k].approach;
     point.tangentImpulse = rows.blocks[k].rows() == 3
                                ? Eigen::Vector2d(lambda.segment<2>(slots[k].offset + 1))
                                : Eigen::Vector2d::Zero();

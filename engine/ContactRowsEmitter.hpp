@@ -17,7 +17,8 @@ namespace coulomb::engine {
 struct ContactRowSource {
   int manifold = 0;
   int point = 0;
-  double depth = 0.0;  // [m] penetration at the start of the step (> 0 overlapping)
+  double depth = 0.0;     // [m] penetration at the start of the step (> 0 overlapping)
+  double approach = 0.0;  // [m/s] u_N = n . (v_B - v_A) at the point with v*, before the solve
 };
 
 /// Emits one block per point of every manifold in `island.constraints` (indices into

@@ -57,8 +57,23 @@ struct ContactSettings {
   /// (u_N >= -gap/h) instead of being pushed apart early. Default on: this is what keeps a
   /// resting contact from flickering on and off.
   bool speculativeContacts = true;
+  /// Elastic turning (docs/tuning.md, "Elastic turning"): at a persistent contact (a point of the
+  /// last solve, carried over or handed to the next capsule of a chain) whose normal turned by
+  /// less than kElasticTurningMaxAngle since the last step, the approach that the turning causes
+  /// is reflected (u_N+ >= -u_turn) instead of stopped, so a body circling on a concave curved
+  /// surface follows the chords of a polygon inscribed in it instead of losing (1/2) m v^2
+  /// sin^2(v h / R) per step (pi m v^3 h / R per turn). Gravity's h g along the normal and every
+  /// new contact stay inelastic. Default off (docs/tuning.md says why); the double loop
+  /// (SCENES.md B11) turns it on.
+  bool elasticTurning = false;
   PenetrationSettings penetration;
 };
+
+/// [rad] Elastic turning applies only where the normal turned by less than this in one step:
+/// larger turns are corners or new features, not a curved surface sampled by the step. 10 degrees:
+/// the double loop's ball turns by at most ~5 degrees per step at dt 0.01 (2 m/s on the 0.26 m
+/// path radius of the loop tops); 10 m/s on a 0.36 m radius would turn by 16.
+inline constexpr double kElasticTurningMaxAngle = 0.17453292519943295;
 
 /// Velocity bias of one contact for the Baumgarte method (0 for the other methods) [m/s].
 double baumgarteBias(const PenetrationSettings& settings, double depth, double h);

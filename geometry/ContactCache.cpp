@@ -21,6 +21,16 @@ Eigen::Vector2d rotatedTangentImpulse(const ContactManifold& old, const ContactP
   return {fresh.tangent1.dot(world), fresh.tangent2.dot(world)};
 }
 
+// The last solve's normal row goes with the impulses. A pair handed over with its colliders in
+// the other order has A and B swapped: the normal and its moments change sign and the moments swap
+// bodies (the normal velocity n . (v_B - v_A) is the same).
+void copySolvedRow(const ContactPoint& from, ContactPoint& to, double sign) {
+  to.solvedNormal = sign * from.solvedNormal;
+  to.solvedMomentA = sign > 0 ? from.solvedMomentA : Eigen::Vector3d(-from.solvedMomentB);
+  to.solvedMomentB = sign > 0 ? from.solvedMomentB : Eigen::Vector3d(-from.solvedMomentA);
+  to.solvedNormalVelocity = from.solvedNormalVelocity;
+}
+
 void carryOver(const ContactManifold& old, ContactManifold& fresh, std::span<const Pose> bodyPoses,
                const ContactCacheSettings& settings) {
   if (old.normal.dot(fresh.normal) < settings.normalAgreement) return;
@@ -31,6 +41,7 @@ void carryOver(const ContactManifold& old, ContactManifold& fresh, std::span<con
     point.normalImpulse = from.normalImpulse;
     point.tangentImpulse = rotatedTangentImpulse(old, from, fresh);
     point.warmStarted = true;
+    copySolvedRow(from, point, 1.0);
   };
   const bool havePoses =
       fresh.bodyA.index < bodyPoses.size() && fresh.bodyB.index < bodyPoses.size();
@@ -101,6 +112,7 @@ void ContactCache::handOver(std::vector<ContactManifold>& fresh,
     m.points[0].tangentImpulse =
         (o.bodyA == m.bodyA ? 1.0 : -1.0) * rotatedTangentImpulse(o, o.points[0], m);
     m.points[0].warmStarted = true;
+    copySolvedRow(o.points[0], m.points[0], o.bodyA == m.bodyA ? 1.0 : -1.0);
   }
 }
 

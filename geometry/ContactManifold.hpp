@@ -20,6 +20,15 @@ struct ContactPoint {
   double normalImpulse = 0.0;                        // last step's impulse along the normal [N s]
   Eigen::Vector2d tangentImpulse = Eigen::Vector2d::Zero();  // along tangent1, tangent2 [N s]
   bool warmStarted = false;  // true when the impulses were carried over from the last step
+  // The normal row of the last solve at this point, carried over with the impulses (elastic
+  // turning, engine/ContactRowsEmitter.cpp and docs/tuning.md): its normal (zero: none), the
+  // moments r_A x n and r_B x n of the normal about the body centres of that step, and the normal
+  // velocity n . (v_B - v_A) the solve left there (exact, -bias, where it pushed; the approach
+  // before the solve where it did not, which other points' impulses may have changed).
+  Eigen::Vector3d solvedNormal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d solvedMomentA = Eigen::Vector3d::Zero();
+  Eigen::Vector3d solvedMomentB = Eigen::Vector3d::Zero();
+  double solvedNormalVelocity = 0.0;
 };
 
 struct ContactManifold {

@@ -14,7 +14,9 @@ The rails are one static body with 3440 capsule shapes (geometry's capsule lies 
 each shape is rotated from z onto its segment). The ball's height z0 is solved here so the ball
 touches the polygonal chains (SCENES.md gives 0.0979805 m; the smooth-rail value is 0.0979796).
 The friction in the file is mu = 1.0 and the solver ac_newton (the paper's); `coulomb run double_loop --mu X` and the conformance cases
-set the others. samples/conformance/DoubleLoopTrack.cpp evaluates the same midline in C++.
+set the others. Elastic turning is on (docs/tuning.md, "Elastic turning": without it the step loses
+(1/2) m v^2 (v h / R)^2 per step on the curved rails and mu = 1.0 falls before the top of loop 2 at
+dt 0.01). samples/conformance/DoubleLoopTrack.cpp evaluates the same midline in C++.
 
 Usage: python3 scripts/generate_double_loop.py [output_dir]   (default: samples/scenes)
 """
@@ -148,7 +150,7 @@ def main():
                  "(--mu 0.1, 0.3, 0.6 for the others) rolls through both loops.") + ",",
              '  "time_step": 0.01,', '  "steps": 500,',
              '  "materials": {"scene": {"friction": 1.0, "restitution": 0.0}},',
-             '  "solver": {"name": "ac_newton"},',
+             '  "solver": {"name": "ac_newton", "elastic_turning": true},',
              '  "bodies": [', "    " + json.dumps(ball) + ",",
              '    {"name": "rails", "type": "static", "shapes": [']
     lines += ["      " + json.dumps(s) + ("," if i + 1 < len(shapes) else "")

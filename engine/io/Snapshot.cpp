@@ -41,6 +41,7 @@ void transferSettings(Ar& ar, WorldSettings& s) {
   ioEnum(ar, s.contact.impactLaw, ImpactLaw::Propagating);
   io(ar, s.contact.touchingTolerance);
   io(ar, s.contact.maxImpactSweeps);
+  io(ar, s.contact.elasticTurning);
   io(ar, s.collision.speculativeMargin);
   io(ar, s.collision.speculativeSweep);
   io(ar, s.collision.matchDistance);
@@ -103,6 +104,10 @@ void transferManifolds(Ar& ar, std::vector<geometry::ContactManifold>& manifolds
       io(ar, p.normalImpulse);
       io(ar, p.tangentImpulse);
       io(ar, p.warmStarted);
+      io(ar, p.solvedNormal);
+      io(ar, p.solvedMomentA);
+      io(ar, p.solvedMomentB);
+      io(ar, p.solvedNormalVelocity);
     }
   }
 }

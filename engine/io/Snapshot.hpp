@@ -30,7 +30,8 @@
 
 namespace coulomb::engine::io {
 
-inline constexpr std::uint32_t kSnapshotVersion = 2;  // 2: collision.speculativeSweep
+// 2: collision.speculativeSweep; 3: contact.elasticTurning and the contact points' solved rows.
+inline constexpr std::uint32_t kSnapshotVersion = 3;
 
 /// The snapshot of `world` as bytes (header included).
 [[nodiscard]] std::vector<std::uint8_t> saveSnapshot(const World& world);

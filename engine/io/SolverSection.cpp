@@ -82,7 +82,7 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
   node.allowOnly({"name", "tolerance", "max_iterations", "time_limit", "warm_start",
                   "restitution_threshold", "speculative_contacts", "speculative_margin",
                   "speculative_sweep", "penetration", "impact_law", "touching_tolerance",
-                  "max_impact_sweeps"});
+                  "max_impact_sweeps", "elastic_turning"});
   solvers::SolverOptions& options = settings.solverOptions;
   if (node.has("name")) settings.solver = parseSolverRequest(node.child("name"));
   if (node.has("tolerance")) options.tolerance = node.child("tolerance").positiveNumber();
@@ -102,6 +102,8 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
     settings.collision.speculativeMargin = nonNegative(node.child("speculative_margin"));
   if (node.has("speculative_sweep"))
     settings.collision.speculativeSweep = nonNegative(node.child("speculative_sweep"));
+  if (node.has("elastic_turning"))
+    contact.elasticTurning = parseBool(node.child("elastic_turning"));
   if (node.has("impact_law")) contact.impactLaw = parseImpactLaw(node.child("impact_law"));
   if (node.has("touching_tolerance"))
     contact.touchingTolerance = nonNegative(node.child("touching_tolerance"));
