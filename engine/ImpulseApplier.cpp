@@ -7,14 +7,20 @@ void applyImpulsesTo(const joints::RowSet& rows, const std::vector<RowBlockSlot>
                      std::vector<Eigen::Vector3d>& linear, std::vector<Eigen::Vector3d>& angular) {
   for (std::size_t k = 0; k < rows.blocks.size(); ++k) {
     const joints::RowBlock& block = rows.blocks[k];
-    const auto impulse = lambda.segment(slots[k].offset, slots[k].rows);
+    const double* impulse = lambda.data() + slots[k].offset;
+    const int rows = slots[k].rows;
     for (const bool sideB : {false, true}) {
       const geometry::BodyId& body = sideB ? block.bodyB : block.bodyA;
       if (!body.valid() || body.index >= state.size() || !state.isDynamic(body.index)) continue;
       const joints::RowJacobian& jac = sideB ? block.jacobianB : block.jacobianA;
-      // Generalised impulse J^T lambda = (linear impulse, angular impulse about the COM).
-      const Eigen::Vector3d p = jac.leftCols<3>().transpose() * impulse;
-      const Eigen::Vector3d l = jac.rightCols<3>().transpose() * impulse;
+      // Generalised impulse J^T lambda = (linear impulse, angular impulse about the COM), summed
+      // row by row (at most 6 rows: a plain loop, not Eigen's dynamic-size matrix-vector kernel).
+      Eigen::Vector3d p = Eigen::Vector3d::Zero(), l = Eigen::Vector3d::Zero();
+      for (int i = 0; i < rows; ++i)
+        for (int c = 0; c < 3; ++c) {
+          p[c] += jac(i, c) * impulse[i];
+          l[c] += jac(i, 3 + c) * impulse[i];
+        }
       linear[body.index] += state.inverseMasses[body.index] * p;
       angular[body.index] += state.worldInverseInertias[body.index] * l;
     }

@@ -13,6 +13,9 @@ namespace {
 
 using Matrix6k = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
 using BlockMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, 6, 6>;
+// BodySpaceDelassus::setSide reads these layouts raw: J rows of 6, M^-1 J^T columns of 6.
+static_assert(joints::RowJacobian::IsRowMajor && joints::RowJacobian::ColsAtCompileTime == 6);
+static_assert(!Matrix6k::IsRowMajor && Matrix6k::RowsAtCompileTime == 6);
 
 // One side of a row block on a dynamic body. Sorted: grouped by body, block order inside.
 struct Touch {
@@ -187,10 +190,12 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
       for (int part = 0; part < parts; ++part, ++solverBlock)
         for (const int side : {0, 1}) {
           if (groupOfSide[2 * k + side] < 0) continue;
+          // Raw rows: J row-major (6 per row), M^-1 J^T column-major (6 per column), so the
+          // rows of part `part` start 6 * height * part further on in both (no temporaries).
           const joints::RowJacobian& jac = side == 1 ? bk.jacobianB : bk.jacobianA;
           factors->setSide(solverBlock, side, groupOfSide[2 * k + side],
-                           jac.middleRows(part * height, height),
-                           minvJt[2 * k + side].middleCols(part * height, height));
+                           jac.data() + 6 * height * part,
+                           minvJt[2 * k + side].data() + 6 * height * part);
         }
     }
     out.problem.W = solvers::DelassusOperator::bodySpace(std::move(factors));

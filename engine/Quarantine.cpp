@@ -31,6 +31,11 @@ std::optional<std::string> Quarantine::check(std::size_t i, const geometry::Body
   const geometry::Pose& pose = state.poses[i];
   const Eigen::Vector3d& v = state.linearVelocities[i];
   const Eigen::Vector3d& w = state.angularVelocities[i];
+  // Nothing to report (every body, twice a step): no stream built.
+  if (pose.allFinite() && v.allFinite() && w.allFinite() &&
+      !(pose.position.norm() > limits.maxPosition) && !(v.norm() > limits.maxLinearSpeed) &&
+      !(w.norm() > limits.maxAngularSpeed))
+    return std::nullopt;
   std::ostringstream why;
   if (!pose.allFinite())
     why << "non-finite pose";

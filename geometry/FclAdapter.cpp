@@ -175,10 +175,10 @@ FclScene::FclScene(FclScene&&) noexcept = default;
 FclScene& FclScene::operator=(FclScene&&) noexcept = default;
 
 void FclScene::upsert(ColliderId id, const std::shared_ptr<const Shape>& shape) {
+  auto it = impl_->entries.find(id);
+  if (shape && it != impl_->entries.end() && it->second->shape == shape) return;  // no name built
   const std::string who = name(id);
   if (!shape) throw std::invalid_argument(who + ": has no shape");
-  auto it = impl_->entries.find(id);
-  if (it != impl_->entries.end() && it->second->shape == shape) return;
   if (auto problem = validateShape(*shape)) throw std::invalid_argument(who + ": " + *problem);
 
   auto entry = std::make_unique<Impl::Entry>();

@@ -6,12 +6,6 @@
 
 namespace coulomb::solvers {
 
-namespace {
-double dot6(const double* a, const double* b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
-}
-}  // namespace
-
 BodySpaceDelassus::BodySpaceDelassus(int bodyCount, std::vector<int> blockSizes)
     : bodies_(bodyCount), size_(std::move(blockSizes)) {
   if (bodyCount < 0) throw std::invalid_argument("BodySpaceDelassus: negative body count");
@@ -42,32 +36,26 @@ void BodySpaceDelassus::setSide(int block, int side, int body,
     }
   }
   entries_.reset();
+  diagonal_.clear();
+}
+
+void BodySpaceDelassus::setSide(int block, int side, int body, const double* J, const double* G) {
+  if (block < 0 || block >= blockCount() || side < 0 || side > 1 || body < 0 || body >= bodies_)
+    throw std::invalid_argument("BodySpaceDelassus::setSide: bad block, side or body");
+  body_[2 * block + side] = body;
+  const int k = size_[block];
+  const auto first = static_cast<std::size_t>((2 * offset_[block] + side) * 6);
+  for (int a = 0; a < k; ++a) {  // row a of the block: 12 a further on (two sides per row)
+    std::copy_n(J + 6 * a, 6, &j_[first + 12 * a]);
+    std::copy_n(G + 6 * a, 6, &g_[first + 12 * a]);
+  }
+  entries_.reset();
+  diagonal_.clear();
 }
 
 void BodySpaceDelassus::bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd& dv) const {
   dv.setZero(6 * bodies_);
   for (int b = 0; b < blockCount(); ++b) addBlockImpulse(b, x.data() + offset_[b], dv);
-}
-
-void BodySpaceDelassus::addBlockVelocity(int b, const Eigen::VectorXd& dv, double* u) const {
-  for (int side = 0; side < 2; ++side) {
-    const int body = body_[2 * b + side];
-    if (body < 0) continue;
-    const double* v = dv.data() + 6 * body;
-    for (int a = 0; a < size_[b]; ++a) u[a] += dot6(J(offset_[b] + a, side), v);
-  }
-}
-
-void BodySpaceDelassus::addBlockImpulse(int b, const double* dx, Eigen::VectorXd& dv) const {
-  for (int side = 0; side < 2; ++side) {
-    const int body = body_[2 * b + side];
-    if (body < 0) continue;
-    double* v = dv.data() + 6 * body;
-    for (int a = 0; a < size_[b]; ++a) {
-      const double* g = G(offset_[b] + a, side);
-      for (int c = 0; c < 6; ++c) v[c] += g[c] * dx[a];
-    }
-  }
 }
 
 void BodySpaceDelassus::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
@@ -77,6 +65,19 @@ void BodySpaceDelassus::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y
 }
 
 void BodySpaceDelassus::diagonalBlock(int b, double* out) const {
+  const int k = size_[b];
+  std::copy_n(&diagonalBlocks()[9 * static_cast<std::size_t>(b)], k * k, out);
+}
+
+const std::vector<double>& BodySpaceDelassus::diagonalBlocks() const {
+  if (diagonal_.empty() && blockCount() > 0) {
+    diagonal_.assign(9 * size_.size(), 0.0);
+    for (int b = 0; b < blockCount(); ++b) computeDiagonalBlock(b, &diagonal_[9 * b]);
+  }
+  return diagonal_;
+}
+
+void BodySpaceDelassus::computeDiagonalBlock(int b, double* out) const {
   const int k = size_[b];
   std::fill(out, out + k * k, 0.0);
   for (int side = 0; side < 2; ++side) {
@@ -109,8 +110,12 @@ BodySpaceDelassus BodySpaceDelassus::selectRows(const std::vector<int>& rows) co
 }
 
 bool BodySpaceDelassus::allFinite() const {
-  const auto finite = [](double v) { return std::isfinite(v); };
-  return std::all_of(j_.begin(), j_.end(), finite) && std::all_of(g_.begin(), g_.end(), finite);
+  // x * 0 is 0 for finite x and NaN for inf or NaN: one vectorisable pass instead of a branch per
+  // number (validate() runs this on every solve).
+  double s = 0.0;
+  for (const double v : j_) s += v * 0.0;
+  for (const double v : g_) s += v * 0.0;
+  return s == 0.0;
 }
 
 const BlockSparseMatrix& BodySpaceDelassus::toBlockSparse() const {

@@ -25,6 +25,9 @@ class BodySpaceDelassus {
   /// (k x 6, twist (v, w)) and `G` = M^-1 J^T (6 x k). A side left unset carries no unknowns.
   void setSide(int block, int side, int body, const Eigen::Ref<const Eigen::MatrixXd>& J,
                const Eigen::Ref<const Eigen::MatrixXd>& G);
+  /// The same from raw storage, no temporaries (the assembler's hot path): `J` holds the k rows of
+  /// 6 one after the other (row-major k x 6), `G` the k columns of 6 (column-major 6 x k).
+  void setSide(int block, int side, int body, const double* J, const double* G);
 
   [[nodiscard]] int size() const { return offset_.back(); }
   [[nodiscard]] int blockCount() const { return static_cast<int>(size_.size()); }
@@ -35,14 +38,37 @@ class BodySpaceDelassus {
 
   /// dv = M^-1 J^T x (6 per body: linear, angular).
   void bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd& dv) const;
-  /// u_b = J_b dv for block b (adds to u[0 .. k-1]).
-  void addBlockVelocity(int b, const Eigen::VectorXd& dv, double* u) const;
-  /// dv += G_b dx for block b (dx: k values).
-  void addBlockImpulse(int b, const double* dx, Eigen::VectorXd& dv) const;
+  /// u_b = J_b dv for block b (adds to u[0 .. k-1]). Inline: the Gauss-Seidel inner loop.
+  void addBlockVelocity(int b, const Eigen::VectorXd& dv, double* u) const {
+    const int k = size_[b], row = offset_[b];
+    for (int side = 0; side < 2; ++side) {
+      const int body = body_[2 * b + side];
+      if (body < 0) continue;
+      const double* v = dv.data() + 6 * body;
+      for (int a = 0; a < k; ++a) u[a] += dot6(J(row + a, side), v);
+    }
+  }
+  /// dv += G_b dx for block b (dx: k values). Inline: the Gauss-Seidel inner loop.
+  void addBlockImpulse(int b, const double* dx, Eigen::VectorXd& dv) const {
+    const int k = size_[b], row = offset_[b];
+    for (int side = 0; side < 2; ++side) {
+      const int body = body_[2 * b + side];
+      if (body < 0) continue;
+      double* v = dv.data() + 6 * body;
+      for (int a = 0; a < k; ++a) {
+        const double* g = G(row + a, side);
+        const double x = dx[a];
+        for (int c = 0; c < 6; ++c) v[c] += g[c] * x;
+      }
+    }
+  }
   /// y += W x, O(rows).
   void multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// W_bb, row-major k x k (sum over the block's sides).
   void diagonalBlock(int b, double* out) const;
+  /// Every W_bb, row-major k x k at 9 b; computed once on the first call (validation, the
+  /// chooser and the prepared problem all read them) and kept until a setSide.
+  [[nodiscard]] const std::vector<double>& diagonalBlocks() const;
   /// The operator of the given rows only (each a 1-row block on the same bodies), e.g. the
   /// contacts' normal rows for the split impulse: W' = W restricted to those rows and columns.
   [[nodiscard]] BodySpaceDelassus selectRows(const std::vector<int>& rows) const;
@@ -52,13 +78,18 @@ class BodySpaceDelassus {
   [[nodiscard]] const BlockSparseMatrix& toBlockSparse() const;
 
  private:
+  static double dot6(const double* a, const double* b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
+  }
   [[nodiscard]] const double* J(int row, int side) const { return &j_[(2 * row + side) * 6]; }
   [[nodiscard]] const double* G(int row, int side) const { return &g_[(2 * row + side) * 6]; }
+  void computeDiagonalBlock(int b, double* out) const;
   int bodies_ = 0;
   std::vector<int> size_, offset_;
   std::vector<int> body_;      // 2 per block, -1 = no unknowns on that side
   std::vector<double> j_, g_;  // 2 x 6 per row: J_s row and G_s column of side s
   mutable std::shared_ptr<const BlockSparseMatrix> entries_;  // toBlockSparse() cache
+  mutable std::vector<double> diagonal_;                      // diagonalBlocks() cache, 9 per block
 };
 
 }  // namespace coulomb::solvers

@@ -72,10 +72,17 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
   bool omegaSwitched = false;
 
   Eigen::VectorXd u, best = r;
-  double bestResidual = p.residual(r, u);
   const BodySpaceDelassus* body = p.bodySpace.get();
   Eigen::VectorXd dv;  // body space: M^-1 J^T r, kept current by every block update
-  if (body) body->bodyVelocities(r, dv);
+  double bestResidual = 0.0;
+  if (body) {  // dv once for both the start's residual and the sweeps (what multiplyAdd does)
+    body->bodyVelocities(r, dv);
+    u = p.q;
+    for (int b = 0; b < nb; ++b) body->addBlockVelocity(b, dv, u.data() + p.offset[b]);
+    bestResidual = p.residualFromVelocity(r, u);
+  } else {
+    bestResidual = p.residual(r, u);
+  }
   double windowBest = bestResidual;
   int windowStart = 0;
   report.status = SolverStatus::MaxIterations;
@@ -103,7 +110,7 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
         if (omega != 1.0) {  // relax the step, then project (3.5)
           double x[3] = {old[0] + omega * (next[0] - old[0]), old[1] + omega * (next[1] - old[1]),
                          old[2] + omega * (next[2] - old[2])};
-          projectOntoCone(x, blk.mu);
+          projectOntoConeSweep(x, blk.mu);
           next = Eigen::Vector3d(x[0], x[1], x[2]);
         }
         if (next.allFinite()) r.segment<3>(off) = next;
@@ -125,9 +132,10 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
     if (body) {  // u = q + J dv: one pass, dv is current
       u = p.q;
       for (int b = 0; b < nb; ++b) body->addBlockVelocity(b, dv, u.data() + p.offset[b]);
-      e = p.residualFromVelocity(r, u);
+      e = p.sweepResidualFromVelocity(r, u);
     } else {
-      e = p.residual(r, u);
+      p.velocity(r, u);
+      e = p.sweepResidualFromVelocity(r, u);
     }
     context.record(report, sweep, e);
     report.nativeResidual = e;

@@ -16,9 +16,7 @@ PreparedProblem PreparedProblem::from(const ContactProblem& problem, bool keepBo
   for (const ConstraintBlock& b : p.blocks) anisotropic |= b.isContact() && b.anisotropic;
   if (keepBodySpace && !anisotropic && problem.W.bodySpaceOperator()) {
     p.bodySpace = problem.W.sharedBodySpace();
-    p.diagonalBlocks.resize(9 * p.blocks.size());
-    for (int b = 0; b < p.blockCount(); ++b)
-      p.bodySpace->diagonalBlock(b, &p.diagonalBlocks[9 * b]);
+    p.diagonalBlocks = p.bodySpace->diagonalBlocks().data();
   } else {
     p.W = problem.W.toBlockSparse(problem.blockSizes());
   }
@@ -35,12 +33,17 @@ PreparedProblem PreparedProblem::from(const ContactProblem& problem, bool keepBo
     p.q = p.q.cwiseProduct(p.scale);
   }
   p.qNorm = plainNorm(p.q);
-  for (int i = 0; i < p.size(); ++i) p.maxDiagonal = std::max(p.maxDiagonal, p.diagonal(i));
+  for (int b = 0; b < p.blockCount(); ++b) {  // max_i W_ii, block by block (no row search)
+    const double* d = p.diagonalBlock(b);
+    const int s = p.blocks[b].size();
+    for (int a = 0; a < s; ++a) p.maxDiagonal = std::max(p.maxDiagonal, d[(s + 1) * a]);
+  }
   return p;
 }
 
 const double* PreparedProblem::diagonalBlock(int b) const {
-  return bodySpace ? &diagonalBlocks[9 * b] : W.blockValues(W.diagonalBlock(b));
+  return bodySpace ? diagonalBlocks + 9 * static_cast<std::ptrdiff_t>(b)
+                   : W.blockValues(W.diagonalBlock(b));
 }
 
 Eigen::Matrix3d PreparedProblem::contactBlock(int b) const {
@@ -59,6 +62,8 @@ double PreparedProblem::diagonal(int row) const {
 
 void PreparedProblem::velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) const {
   u = q;
+  // r = 0 (every solve's first candidate): W r = 0 exactly (the factors are finite), u = q.
+  if (std::all_of(r.data(), r.data() + r.size(), [](double x) { return x == 0.0; })) return;
   if (bodySpace)
     bodySpace->multiplyAdd(r, u);
   else
@@ -68,6 +73,11 @@ void PreparedProblem::velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) con
 double PreparedProblem::residualFromVelocity(const Eigen::VectorXd& r,
                                              const Eigen::VectorXd& u) const {
   return solvers::residualFromVelocity(blocks, r, u) / (1.0 + qNorm);
+}
+
+double PreparedProblem::sweepResidualFromVelocity(const Eigen::VectorXd& r,
+                                                  const Eigen::VectorXd& u) const {
+  return solvers::sweepResidualFromVelocity(blocks, r, u) / (1.0 + qNorm);
 }
 
 double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u) const {

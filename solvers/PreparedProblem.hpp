@@ -23,7 +23,9 @@ struct PreparedProblem {
   // Set instead of W for solvers that work on the factors (Gauss-Seidel, see BodySpaceDelassus)
   // when the problem's W is body-space and isotropic: W is then never formed.
   std::shared_ptr<const BodySpaceDelassus> bodySpace;
-  std::vector<double> diagonalBlocks;  // with bodySpace: W_bb row-major at 9 b
+  // With bodySpace: W_bb row-major at 9 b, the factors' own cache (BodySpaceDelassus::
+  // diagonalBlocks, valid while bodySpace is held: the factors are never changed once shared).
+  const double* diagonalBlocks = nullptr;
   Eigen::VectorXd q;
   std::vector<ConstraintBlock> blocks;  // isotropic (anisotropic ones mapped, see above)
   std::vector<int> offset;              // blocks.size() + 1 entries
@@ -44,6 +46,9 @@ struct PreparedProblem {
   double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;
   [[nodiscard]] double residualFromVelocity(const Eigen::VectorXd& r,
                                             const Eigen::VectorXd& u) const;
+  // The same with sweepNorm (round-off apart): Gauss-Seidel's convergence checks.
+  [[nodiscard]] double sweepResidualFromVelocity(const Eigen::VectorXd& r,
+                                                 const Eigen::VectorXd& u) const;
   // Projection onto the constraint set: cones, bounds, [0, inf); equality rows untouched.
   void project(Eigen::VectorXd& r) const;
   [[nodiscard]] Eigen::VectorXd toOriginal(const Eigen::VectorXd& r) const;

@@ -64,6 +64,26 @@ double residualFromVelocity(const std::vector<ConstraintBlock>& blocks, const Ei
   return std::sqrt(s);
 }
 
+double sweepResidualFromVelocity(const std::vector<ConstraintBlock>& blocks,
+                                 const Eigen::VectorXd& r, const Eigen::VectorXd& u) {
+  double s = 0;
+  int offset = 0;
+  for (const ConstraintBlock& b : blocks) {
+    const double* rb = r.data() + offset;
+    const double* ub = u.data() + offset;
+    if (b.kind == BlockKind::Contact3D && !b.anisotropic) {
+      double x[3] = {rb[0] - (ub[0] + b.mu * sweepNorm(ub[1], ub[2])), rb[1] - ub[1],
+                     rb[2] - ub[2]};
+      projectOntoConeSweep(x, b.mu);
+      for (int k = 0; k < 3; ++k) s += (rb[k] - x[k]) * (rb[k] - x[k]);
+    } else {
+      accumulateBlockResidual(b, rb, ub, s);
+    }
+    offset += b.size();
+  }
+  return std::sqrt(s);
+}
+
 ResidualValue commonResidual(const ContactProblem& problem, const Eigen::VectorXd& r,
                              Eigen::VectorXd& u) {
   problem.W.velocity(r, problem.q, u);

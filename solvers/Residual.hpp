@@ -32,6 +32,12 @@ double blockResidualSquared(const ConstraintBlock& block, const double* r, const
 double residualFromVelocity(const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd& r,
                             const Eigen::VectorXd& u);
 
+// The same with sweepNorm instead of std::hypot for the isotropic cones (equal up to round-off):
+// the convergence checks of the Gauss-Seidel loop, which run after nearly every sweep. Reported
+// residuals are always the exact one above.
+double sweepResidualFromVelocity(const std::vector<ConstraintBlock>& blocks,
+                                 const Eigen::VectorXd& r, const Eigen::VectorXd& u);
+
 // The common residual of r for the problem: computes u = W r + q, then (1.8).
 ResidualValue commonResidual(const ContactProblem& problem, const Eigen::VectorXd& r);
 ResidualValue commonResidual(const ContactProblem& problem, const Eigen::VectorXd& r,

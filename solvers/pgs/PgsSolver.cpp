@@ -30,24 +30,27 @@ void PgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
     Eigen::Matrix3d W;
     double rho = 0, rhoN = 0, rhoT = 0;
   };
+  const PgsOptions::Update mode = options_.update;
   std::vector<Local> local(p.blockCount());
   for (int b = 0; b < p.blockCount(); ++b) {
     if (!p.blocks[b].isContact()) continue;
     Local& l = local[b];
     l.W = p.contactBlock(b);
-    l.rho = inverseSpectralRadius(l.W);
-    l.rhoN = 1.0 / l.W(0, 0);
-    l.rhoT = inverseTangentSpectralRadius(l.W);
+    if (mode == PgsOptions::Update::ConeProjection) {
+      l.rho = inverseSpectralRadius(l.W);
+    } else {  // (3.2): only the normal and tangential steps
+      l.rhoN = 1.0 / l.W(0, 0);
+      l.rhoT = inverseTangentSpectralRadius(l.W);
+    }
   }
-  const PgsOptions::Update mode = options_.update;
   ContactUpdate update = [&](int b, const Eigen::Vector3d& qt, Eigen::Vector3d& rc) {
     const Local& l = local[b];
     const double mu = p.blocks[b].mu;
     Eigen::Vector3d u = l.W * rc + qt;
     if (mode == PgsOptions::Update::ConeProjection) {  // (3.3)
-      double x[3] = {rc[0] - l.rho * (u[0] + mu * std::hypot(u[1], u[2])), rc[1] - l.rho * u[1],
+      double x[3] = {rc[0] - l.rho * (u[0] + mu * sweepNorm(u[1], u[2])), rc[1] - l.rho * u[1],
                      rc[2] - l.rho * u[2]};
-      projectOntoCone(x, mu);
+      projectOntoConeSweep(x, mu);
       rc = Eigen::Vector3d(x[0], x[1], x[2]);
       return;
     }

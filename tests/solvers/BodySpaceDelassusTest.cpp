@@ -9,8 +9,10 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include <limits>
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 using namespace coulomb::solvers;
@@ -123,4 +125,50 @@ TEST(BodySpaceDelassus, GaussSeidelOnTheFactorsSolvesWhatItSolvesOnTheEntries) {
 TEST(BodySpaceDelassus, RejectsBadShapes) {
   EXPECT_THROW(BodySpaceDelassus(2, {3, 2}), std::invalid_argument);
   EXPECT_THROW(BodySpaceDelassus(-1, {3}), std::invalid_argument);
+}
+
+// The assembler's raw setSide (J rows of 6, M^-1 J^T columns of 6) stores what the Ref one
+// stores; the cached diagonal blocks follow a later setSide; allFinite sees inf and NaN.
+TEST(BodySpaceDelassus, RawSidesCachedDiagonalAndFiniteness) {
+  const Chain c = chain(4, 5);
+  BodySpaceDelassus raw(4, c.sizes);
+  for (int k = 0; k < raw.blockCount(); ++k) {
+    const int height = c.sizes[k], row = raw.blockOffset(k);
+    for (int side = 0; side < 2; ++side) {
+      const int body = k < 4 ? (side == 0 ? k - 1 : k) : (side == 0 ? 3 : -1);
+      if (body < 0) continue;
+      const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> Jb =
+          c.J.block(row, 6 * body, height, 6);
+      const Eigen::MatrixXd G = c.Minv.block<6, 6>(6 * body, 6 * body) * Jb.transpose();
+      raw.setSide(k, side, body, Jb.data(), G.data());
+    }
+  }
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(raw.size(), -1.0, 2.0);
+  Eigen::VectorXd y1 = Eigen::VectorXd::Zero(raw.size()), y2 = y1;
+  raw.multiplyAdd(x, y1);
+  c.factors->multiplyAdd(x, y2);
+  EXPECT_EQ(y1, y2);  // same numbers stored, same operations
+  EXPECT_EQ(raw.toBlockSparse().toDense(), c.factors->toBlockSparse().toDense());
+
+  double before[9], after[9];
+  raw.diagonalBlock(1, before);
+  const Eigen::Matrix<double, 3, 6, Eigen::RowMajor> J2 =
+      2.0 * Eigen::Matrix<double, 3, 6, Eigen::RowMajor>::Ones();
+  const Eigen::Matrix<double, 6, 3> G2 = Eigen::Matrix<double, 6, 3>::Ones();
+  raw.setSide(1, 0, 0, J2.data(), G2.data());
+  raw.diagonalBlock(1, after);
+  EXPECT_NE(after[0], before[0]);
+  const Eigen::MatrixXd W = raw.toBlockSparse().toDense();
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) EXPECT_DOUBLE_EQ(after[3 * a + b], W(3 + a, 3 + b));
+
+  EXPECT_TRUE(raw.allFinite());
+  Eigen::Matrix<double, 3, 6, Eigen::RowMajor> bad = J2;
+  bad(2, 5) = std::numeric_limits<double>::infinity();
+  raw.setSide(1, 0, 0, bad.data(), G2.data());
+  EXPECT_FALSE(raw.allFinite());
+  bad(2, 5) = std::numeric_limits<double>::quiet_NaN();
+  raw.setSide(1, 0, 0, bad.data(), G2.data());
+  EXPECT_FALSE(raw.allFinite());
+  EXPECT_THROW(raw.setSide(1, 0, 9, J2.data(), G2.data()), std::invalid_argument);
 }
