@@ -72,11 +72,12 @@ INSTANTIATE_TEST_SUITE_P(CardHouseAndArch, Structure,
 
 TEST_P(Stability, HoldsOverAShortHorizon) {
   const auto& [name, solver] = GetParam();
-  // 200 steps of the towers, 50 of the pyramid, 10 of the pile (it is still falling: first
-  // contacts with the floor, no NaN, no corner below -5 mm).
+  // 200 steps of the towers, 50 of the pyramid, 60 of the pile: its landing cascade (the top
+  // layer lands at step ~55), where the pile used to fail: no NaN, no corner below -5 mm, no box
+  // out, the energy never above E(0) (before the face-preferring box-box manifolds: -1.6 cm).
   double scale = 0.02;
   if (name == "pyramid/base=10") scale = 0.005;
-  if (name == "box_pile_1000/container") scale = 0.001;
+  if (name == "box_pile_1000/container") scale = 0.006;
   scale *= kSanitizerFactor;
   const conformance::CaseRun run = runCase(name, solver, scale);
   EXPECT_TRUE(run.passed);
