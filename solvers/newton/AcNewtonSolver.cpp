@@ -22,6 +22,9 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
   Eigen::VectorXd u, best = r;
   double e = p.residual(r, u), bestE = e;
   PreparedProblem inner = p;
+  // One linear solver for all subproblems: W + sigma I keeps W's structure, so the sparse pattern
+  // and its symbolic analysis carry over from one subproblem to the next.
+  NewtonLinearSolver linear(o.newton.denseThreshold, o.newton.sparseMaxDensity);
   const double tol = context.tolerance();
   int outer = 0, used = 0;
   while (used < budget && bestE > tol) {
@@ -38,7 +41,7 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     SolverReport innerReport;
     Eigen::VectorXd x = r;
     runNonsmoothNewton(inner, f, o.newton, innerContext,
-                       std::min(o.proximalInnerIterations, budget - used), x, innerReport);
+                       std::min(o.proximalInnerIterations, budget - used), x, innerReport, &linear);
     used += std::max(1, innerReport.iterations);
     report.lineSearchFailures += innerReport.lineSearchFailures;
     report.maxRegularization = std::max(report.maxRegularization, innerReport.maxRegularization);

@@ -2,9 +2,7 @@
 
 #include <coulomb/solvers/pgs/PgsSolver.hpp>
 
-#include <Eigen/LU>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
+#include <coulomb/solvers/newton/NewtonLinearSolver.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -16,15 +14,18 @@ namespace coulomb::solvers {
 
 namespace {
 
-struct BlockJacobian {
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero();
-};
-
 // Phi and the blocks of A and B of every block of the problem.
 class NewtonSystem {
  public:
-  NewtonSystem(const PreparedProblem& p, const NewtonFunction& f, const NewtonSettings& s)
-      : p_(p), f_(f), rhoN_(p.blockCount()), rhoT_(p.blockCount()), jac_(p.blockCount()) {
+  NewtonSystem(const PreparedProblem& p, const NewtonFunction& f, const NewtonSettings& s,
+               NewtonLinearSolver* shared)
+      : p_(p),
+        f_(f),
+        rhoN_(p.blockCount()),
+        rhoT_(p.blockCount()),
+        jac_(p.blockCount()),
+        own_(s.denseThreshold, s.sparseMaxDensity),
+        linear_(shared ? *shared : own_) {
     for (int b = 0; b < p.blockCount(); ++b) {
       if (!p.blocks[b].isContact()) {
         rhoN_[b] = rhoT_[b] = 1.0 / p.W.blockValues(p.W.diagonalBlock(b))[0];  // (10.2)
@@ -102,7 +103,7 @@ class NewtonSystem {
   }
 
   // Solves J_sigma d = -phi with eliminated unit rows (5.7); false if not accurate.
-  bool solve(const Eigen::VectorXd& phi, double sigma, int denseThreshold, Eigen::VectorXd& d) {
+  bool solve(const Eigen::VectorXd& phi, double sigma, Eigen::VectorXd& d) {
     const int n = p_.size();
     std::vector<int> index(n, -1), kept;
     d.setZero(n);
@@ -128,51 +129,9 @@ class NewtonSystem {
     applyAB(wd, d, jd);
     Eigen::VectorXd rhs(m);
     for (int k = 0; k < m; ++k) rhs[k] = -phi[kept[k]] - jd[kept[k]];
-    // J_RR = (A (W + sigma I) + B)_RR, block row by block row.
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(static_cast<size_t>(p_.W.nonZeros()) + n);
-    for (int b = 0; b < p_.blockCount(); ++b) {
-      const int o = p_.offset[b], s = p_.W.blockSize(b);
-      const Eigen::Matrix3d& A = jac_[b].A;
-      const Eigen::Matrix3d& B = jac_[b].B;
-      for (int a = 0; a < s; ++a) {
-        const int row = index[o + a];
-        if (row < 0) continue;
-        for (int k = p_.W.rowBegin(b); k < p_.W.rowEnd(b); ++k) {
-          const int j = p_.W.blockColumn(k), oj = p_.offset[j], sj = p_.W.blockSize(j);
-          const double* v = p_.W.blockValues(k);
-          for (int c = 0; c < sj; ++c) {
-            const int col = index[oj + c];
-            if (col < 0) continue;
-            double val = 0;
-            for (int t = 0; t < s; ++t) val += A(a, t) * v[sj * t + c];
-            if (j == b) val += sigma * A(a, c) + B(a, c);
-            triplets.emplace_back(row, col, val);
-          }
-        }
-      }
-    }
+    // J_RR = (A (W + sigma I) + B)_RR: dense or sparse LU (NewtonLinearSolver).
     Eigen::VectorXd x;
-    double err = 0;
-    if (m <= denseThreshold) {
-      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, m);
-      for (const auto& t : triplets) J(t.row(), t.col()) += t.value();
-      x = J.partialPivLu().solve(rhs);
-      if (!x.allFinite()) return false;
-      err = (J * x - rhs).norm();
-    } else {
-      Eigen::SparseMatrix<double> J(m, m);
-      J.setFromTriplets(triplets.begin(), triplets.end());
-      J.makeCompressed();
-      Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-      lu.analyzePattern(J);
-      lu.factorize(J);
-      if (lu.info() != Eigen::Success) return false;
-      x = lu.solve(rhs);
-      if (lu.info() != Eigen::Success || !x.allFinite()) return false;
-      err = (J * x - rhs).norm();
-    }
-    if (!(err <= 1e-8 * rhs.norm())) return false;
+    if (!linear_.solve(p_.W, p_.offset, jac_, kept, index, sigma, rhs, x)) return false;
     for (int k = 0; k < m; ++k) d[kept[k]] = x[k];
     return true;
   }
@@ -188,16 +147,18 @@ class NewtonSystem {
   const PreparedProblem& p_;
   const NewtonFunction& f_;
   std::vector<double> rhoN_, rhoT_;
-  std::vector<BlockJacobian> jac_;
+  std::vector<NewtonBlockJacobian> jac_;
+  NewtonLinearSolver own_;
+  NewtonLinearSolver& linear_;
 };
 
 }  // namespace
 
 void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function,
                         const NewtonSettings& s, const SolveContext& context, int maxIterations,
-                        Eigen::VectorXd& r, SolverReport& report) {
+                        Eigen::VectorXd& r, SolverReport& report, NewtonLinearSolver* linear) {
   const int n = p.size();
-  NewtonSystem system(p, function, s);
+  NewtonSystem system(p, function, s, linear);
   Eigen::VectorXd u, phi, d, wd, jd, trialR, trialU, trialPhi;
   double e = p.residual(r, u);
   Eigen::VectorXd best = r;
@@ -226,10 +187,10 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
     // (5.8) residual-scaled shift, escalated by x100 after failures.
     double sigma = std::clamp(e, s.minShift, s.maxShift) * p.maxDiagonal * boost;
     if (s.maxShift <= 0) sigma = 0;
-    bool ok = system.solve(phi, sigma, s.denseThreshold, d);
+    bool ok = system.solve(phi, sigma, d);
     if (!ok) {
       sigma = std::max(sigma, 1e-10 * p.maxDiagonal) * 100.0;
-      ok = system.solve(phi, sigma, s.denseThreshold, d);
+      ok = system.solve(phi, sigma, d);
     }
     report.maxRegularization = std::max(report.maxRegularization, sigma);
     wd.setZero(n);

@@ -8,6 +8,7 @@
 #include <coulomb/solvers/PreparedProblem.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
 #include <coulomb/solvers/newton/NewtonFunction.hpp>
+#include <coulomb/solvers/newton/NewtonLinearSolver.hpp>
 
 #include <Eigen/Core>
 
@@ -25,20 +26,28 @@ struct NewtonSettings {
   // piecewise smooth) or Armijo backtracking (5.11), preferred for Fischer-Burmeister (C^1 merit).
   enum class LineSearch { GoldsteinPrice, Armijo };
   LineSearch lineSearch = LineSearch::GoldsteinPrice;
-  int lineSearchTrials = 30;       // Algorithm 5.2, global; also the Armijo halvings
-  double m1 = 0.1, m2 = 0.9;       // (5.10)
-  double armijoC = 1e-4;           // (5.11) sufficient-decrease constant
-  int stallIterations = 20;        // (5.12): Stalled when the best e_rel fell by < 1 % ...
-  double stallDecrease = 0.01;     // ... over this many iterations
-  int denseThreshold = 300;        // unknowns left after elimination: dense LU below
+  int lineSearchTrials = 30;    // Algorithm 5.2, global; also the Armijo halvings
+  double m1 = 0.1, m2 = 0.9;    // (5.10)
+  double armijoC = 1e-4;        // (5.11) sufficient-decrease constant
+  int stallIterations = 20;     // (5.12): Stalled when the best e_rel fell by < 1 % ...
+  double stallDecrease = 0.01;  // ... over this many iterations
+  // Linear solve of each step (NewtonLinearSolver): dense LU up to `denseThreshold` unknowns left
+  // after elimination, or when W stores more than `sparseMaxDensity` n^2 entries; else sparse LU
+  // (COLAMD), its symbolic analysis reused while the pattern holds. 100: the measured crossover on
+  // a tower's block-tridiagonal W (docs/benchmarks.md, "Newton linear solve").
+  int denseThreshold = 100;
+  double sparseMaxDensity = 0.5;
   int defaultMaxIterations = 200;  // AC11 section 5.2
 };
 
 // Runs at most `maxIterations` Newton steps from r (feasible start, prepared variables); r is the
 // best iterate on exit. Fills status (Converged, MaxIterations, Stalled, NumericalFailure),
 // adds to report.iterations, sets the native residual e_Phi (5.13) and the regularization notes.
+// `linear`, when given, is used (and keeps its cached sparse pattern) instead of a solver of the
+// run's own: the proximal subproblems (5.9) share one, since their W keep one structure.
 void runNonsmoothNewton(const PreparedProblem& problem, const NewtonFunction& function,
                         const NewtonSettings& settings, const SolveContext& context,
-                        int maxIterations, Eigen::VectorXd& r, SolverReport& report);
+                        int maxIterations, Eigen::VectorXd& r, SolverReport& report,
+                        NewtonLinearSolver* linear = nullptr);
 
 }  // namespace coulomb::solvers

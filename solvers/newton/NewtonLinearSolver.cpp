@@ -1,0 +1,157 @@
+#include <coulomb/solvers/newton/NewtonLinearSolver.hpp>
+
+#include <Eigen/LU>
+
+#include <algorithm>
+
+namespace coulomb::solvers {
+
+bool NewtonLinearSolver::samePattern(const BlockSparseMatrix& W,
+                                     const std::vector<int>& kept) const {
+  if (!analyzed_ || kept != patternKept_ || W.blockSizes() != patternSizes_ ||
+      W.nonZeroBlocks() != static_cast<int>(patternColumns_.size()))
+    return false;
+  for (int b = 0; b < W.blockCount(); ++b) {
+    if (W.rowBegin(b) != patternRowStart_[b]) return false;
+    for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k)
+      if (W.blockColumn(k) != patternColumns_[k]) return false;
+  }
+  return true;
+}
+
+void NewtonLinearSolver::buildPattern(const BlockSparseMatrix& W, const std::vector<int>& offset,
+                                      const std::vector<int>& kept, const std::vector<int>& index) {
+  const int m = static_cast<int>(kept.size());
+  // Entries in assembly order (block row b, kept row a of b, stored block k, kept column c of
+  // block column j): count them per column, then give each its compressed position. Rows are
+  // visited in increasing order, so every column's rows come out sorted.
+  std::vector<int> columns;
+  columns.reserve(static_cast<size_t>(W.nonZeros()));
+  for (int b = 0; b < W.blockCount(); ++b) {
+    const int o = offset[b], s = W.blockSize(b);
+    for (int a = 0; a < s; ++a) {
+      if (index[o + a] < 0) continue;
+      for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
+        const int j = W.blockColumn(k), oj = offset[j], sj = W.blockSize(j);
+        for (int c = 0; c < sj; ++c)
+          if (index[oj + c] >= 0) columns.push_back(index[oj + c]);
+      }
+    }
+  }
+  const int nnz = static_cast<int>(columns.size());
+  J_.resize(m, m);
+  J_.resizeNonZeros(nnz);
+  int* outer = J_.outerIndexPtr();
+  int* inner = J_.innerIndexPtr();
+  std::fill(outer, outer + m + 1, 0);
+  for (int col : columns) ++outer[col + 1];
+  for (int c = 0; c < m; ++c) outer[c + 1] += outer[c];
+  std::vector<int> next(outer, outer + m);
+  slots_.resize(columns.size());
+  size_t e = 0;
+  for (int b = 0; b < W.blockCount(); ++b) {
+    const int o = offset[b], s = W.blockSize(b);
+    for (int a = 0; a < s; ++a) {
+      const int row = index[o + a];
+      if (row < 0) continue;
+      for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
+        const int j = W.blockColumn(k), oj = offset[j], sj = W.blockSize(j);
+        for (int c = 0; c < sj; ++c) {
+          if (index[oj + c] < 0) continue;
+          const int slot = next[columns[e]]++;
+          inner[slot] = row;
+          slots_[e++] = slot;
+        }
+      }
+    }
+  }
+  std::fill(J_.valuePtr(), J_.valuePtr() + nnz, 0.0);
+  patternSizes_ = W.blockSizes();
+  patternRowStart_.resize(W.blockCount());
+  patternColumns_.resize(W.nonZeroBlocks());
+  for (int b = 0; b < W.blockCount(); ++b) {
+    patternRowStart_[b] = W.rowBegin(b);
+    for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) patternColumns_[k] = W.blockColumn(k);
+  }
+  patternKept_ = kept;
+  lu_ = std::make_unique<SparseLu>();
+  lu_->analyzePattern(J_);
+  analyzed_ = true;
+  ++stats_.patternAnalyses;
+}
+
+void NewtonLinearSolver::fillSparse(const BlockSparseMatrix& W, const std::vector<int>& offset,
+                                    const std::vector<NewtonBlockJacobian>& jac,
+                                    const std::vector<int>& index, double sigma) {
+  double* values = J_.valuePtr();
+  size_t e = 0;
+  for (int b = 0; b < W.blockCount(); ++b) {
+    const int o = offset[b], s = W.blockSize(b);
+    const Eigen::Matrix3d& A = jac[b].A;
+    const Eigen::Matrix3d& B = jac[b].B;
+    for (int a = 0; a < s; ++a) {
+      if (index[o + a] < 0) continue;
+      for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
+        const int j = W.blockColumn(k), oj = offset[j], sj = W.blockSize(j);
+        const double* v = W.blockValues(k);
+        for (int c = 0; c < sj; ++c) {
+          if (index[oj + c] < 0) continue;
+          double val = 0;
+          for (int t = 0; t < s; ++t) val += A(a, t) * v[sj * t + c];
+          if (j == b) val += sigma * A(a, c) + B(a, c);
+          values[slots_[e++]] = val;
+        }
+      }
+    }
+  }
+}
+
+bool NewtonLinearSolver::solve(const BlockSparseMatrix& W, const std::vector<int>& offset,
+                               const std::vector<NewtonBlockJacobian>& jac,
+                               const std::vector<int>& kept, const std::vector<int>& index,
+                               double sigma, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+  const int m = static_cast<int>(kept.size());
+  double err = 0;
+  const double n = W.size();
+  if (m <= denseThreshold_ || W.nonZeros() > maxSparseDensity_ * n * n) {
+    ++stats_.denseSolves;
+    dense_.setZero(m, m);
+    for (int b = 0; b < W.blockCount(); ++b) {
+      const int o = offset[b], s = W.blockSize(b);
+      const Eigen::Matrix3d& A = jac[b].A;
+      const Eigen::Matrix3d& B = jac[b].B;
+      for (int a = 0; a < s; ++a) {
+        const int row = index[o + a];
+        if (row < 0) continue;
+        for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
+          const int j = W.blockColumn(k), oj = offset[j], sj = W.blockSize(j);
+          const double* v = W.blockValues(k);
+          for (int c = 0; c < sj; ++c) {
+            const int col = index[oj + c];
+            if (col < 0) continue;
+            double val = 0;
+            for (int t = 0; t < s; ++t) val += A(a, t) * v[sj * t + c];
+            if (j == b) val += sigma * A(a, c) + B(a, c);
+            dense_(row, col) += val;
+          }
+        }
+      }
+    }
+    x = dense_.partialPivLu().solve(rhs);
+    if (!x.allFinite()) return false;
+    err = (dense_ * x - rhs).norm();
+  } else {
+    stats_.lastReusedPattern = samePattern(W, kept);
+    if (!stats_.lastReusedPattern) buildPattern(W, offset, kept, index);
+    fillSparse(W, offset, jac, index, sigma);
+    ++stats_.sparseSolves;
+    lu_->factorize(J_);
+    if (lu_->info() != Eigen::Success) return false;
+    x = lu_->solve(rhs);
+    if (lu_->info() != Eigen::Success || !x.allFinite()) return false;
+    err = (J_ * x - rhs).norm();
+  }
+  return err <= 1e-8 * rhs.norm();
+}
+
+}  // namespace coulomb::solvers
