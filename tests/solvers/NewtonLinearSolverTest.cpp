@@ -145,8 +145,8 @@ TEST(NewtonLinearSolver, SparseAndDenseGiveTheSameStepOnATower) {
   }
 }
 
-// The default rule: the 20-box tower (240 rows, W 14 % full) goes sparse, a dense W of the same
-// size (one body under 80 contacts) and a 60-row tower stay with the dense LU.
+// The default rule: a 30-box tower (360 rows, W ~9 % full) goes sparse, a dense W of 240 rows
+// (one body under 80 contacts) and a 60-row tower stay with the dense LU.
 TEST(NewtonLinearSolver, DefaultRuleUsesSparseOnlyForLargeSparseW) {
   auto run = [](const BlockSparseMatrix& W) {
     std::vector<NewtonBlockJacobian> jac = randomJacobian(W.blockCount(), 3);
@@ -159,7 +159,7 @@ TEST(NewtonLinearSolver, DefaultRuleUsesSparseOnlyForLargeSparseW) {
     EXPECT_LT(relativeError(x, referenceStep(W, jac, rows, 1e-6, rhs)), 1e-10);
     return solver.stats();
   };
-  EXPECT_EQ(run(towerDelassus(20, 4, 3)).sparseSolves, 1);
+  EXPECT_EQ(run(towerDelassus(30, 4, 3)).sparseSolves, 1);
   EXPECT_EQ(run(towerDelassus(1, 80, 3)).denseSolves, 1);
   EXPECT_EQ(run(towerDelassus(5, 4, 3)).denseSolves, 1);
 }
