@@ -92,6 +92,52 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
     return;
   }
   runNonsmoothNewton(p, function, options_.newton, context, budget, r, report);
+  // Stall restart (hybrid (b) inside the solver, SOLVERS.md section 5; Siconos'
+  // NSN_AND_PLI_NSN_LOOP): a stalled Newton sits in a local minimum of psi = 1/2 ||Phi||^2 that
+  // is no solution, typically on the kink ||y_T|| = delta of one contact, where the Newton
+  // directions of both sides cross the kink and raise psi (docs/solvers.md, "ac_newton stall
+  // restart"). No descent method on psi leaves it; bgs sweeps do not look at psi, so a few of them
+  // from r_best give a new start, from which Newton continues.
+  int restarts = 0, accepted = 0, restartSweeps = 0;
+  while (restarts < options_.stallRestarts && report.status == SolverStatus::Stalled &&
+         report.iterations < budget && !report.timeLimitReached) {
+    ++restarts;
+    Eigen::VectorXd u;
+    const Eigen::VectorXd before = r;
+    const double beforeE = p.residual(r, u);
+    SolverOptions gsOptions = context.options();
+    gsOptions.maxIterations = std::min(options_.restartSweeps, budget - report.iterations);
+    gsOptions.recordHistory = false;
+    SolverReport gsReport;
+    BgsSolver().solvePrepared(p, context.withOptions(gsOptions), r, gsReport);
+    report.iterations += gsReport.iterations;
+    restartSweeps += gsReport.iterations;
+    if (gsReport.status == SolverStatus::Converged) {
+      report.status = SolverStatus::Converged;
+      break;
+    }
+    // Continue Newton only where bgs clearly makes progress (e_rel down by restartGain): where
+    // it does not (bgs plateaus near the tolerance on Capsules-i122, slow bgs on RockPile) the
+    // proximal loop (5.9) takes over from Newton's best with the budget left, as before.
+    if (!(p.residual(r, u) < options_.restartGain * beforeE)) {
+      r = before;
+      report.status = SolverStatus::Stalled;
+      break;
+    }
+    ++accepted;
+    if (report.iterations >= budget) {
+      report.status = SolverStatus::MaxIterations;
+      break;
+    }
+    runNonsmoothNewton(p, function, options_.newton, context, budget - report.iterations, r,
+                       report);
+  }
+  if (restarts > 0) {
+    std::ostringstream msg;
+    msg << "stall restart: " << restarts << " x bgs (" << restartSweeps << " sweeps), " << accepted
+        << " improved on Newton's best and restarted it";
+    report.note(msg.str());
+  }
   if (report.maxRegularization > 0) {
     std::ostringstream msg;
     msg << "J regularized by (5.8), sigma up to " << report.maxRegularization
