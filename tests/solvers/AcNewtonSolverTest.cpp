@@ -36,6 +36,7 @@ TEST(AcNewtonSolver, HistoryAndProximalFallback) {
   a.newton.stallIterations = 3;  // stall early to exercise (5.9)
   a.newton.stallDecrease = 0.5;
   a.proximalInnerIterations = 100;
+  a.stallRestarts = 0;  // the bgs restart would converge before (5.9) is reached
   const SolveOutcome out = AcNewtonSolver(a).solve(p, o);
   EXPECT_FALSE(out.report.history.empty());
   EXPECT_NE(out.report.message.find("proximal"), std::string::npos) << out.report.message;
