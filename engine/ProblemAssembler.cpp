@@ -148,8 +148,16 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
     }
     q.segment(out.slots[k].offset, out.slots[k].rows) = u;
   }
-  // Grouped by body, in block order inside a body (deterministic).
-  std::sort(touches.begin(), touches.end());
+  // Grouped by body, in block order inside a body (deterministic): a stable counting sort by
+  // body gives std::sort's order, as the touches were appended in (block, side) order.
+  {
+    std::vector<int> next(state.size() + 1, 0);
+    for (const Touch& t : touches) ++next[t.body + 1];
+    for (std::size_t b = 1; b < next.size(); ++b) next[b] += next[b - 1];
+    std::vector<Touch> sorted(touches.size());
+    for (const Touch& t : touches) sorted[next[t.body]++] = t;
+    touches.swap(sorted);
+  }
   std::vector<int> groupOfSide(2 * blockCount, -1);  // (block, side) -> its body's group
   std::vector<int> groupStart;
   for (int t = 0; t < static_cast<int>(touches.size()); ++t) {

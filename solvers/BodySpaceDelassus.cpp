@@ -20,6 +20,14 @@ BodySpaceDelassus::BodySpaceDelassus(int bodyCount, std::vector<int> blockSizes)
   g_.assign(static_cast<std::size_t>(12) * size(), 0.0);
 }
 
+void BodySpaceDelassus::noteSideSet(int block, int side, const double* values, std::size_t count) {
+  // x * 0 is 0 for finite x and NaN for inf or NaN (see allFinite).
+  double s = 0.0;
+  for (std::size_t i = 0; i < count; ++i) s += values[i] * 0.0;
+  nonFinite_ = nonFinite_ || !(s == 0.0);
+  if (body_[2 * block + side] >= 0) rescan_ = true;  // an overwrite may have removed a bad value
+}
+
 void BodySpaceDelassus::setSide(int block, int side, int body,
                                 const Eigen::Ref<const Eigen::MatrixXd>& J,
                                 const Eigen::Ref<const Eigen::MatrixXd>& G) {
@@ -27,14 +35,16 @@ void BodySpaceDelassus::setSide(int block, int side, int body,
   if (side < 0 || side > 1 || body < 0 || body >= bodies_ || J.rows() != k || J.cols() != 6 ||
       G.rows() != 6 || G.cols() != k)
     throw std::invalid_argument("BodySpaceDelassus::setSide: bad side, body or shapes");
-  body_[2 * block + side] = body;
   for (int a = 0; a < k; ++a) {
     const int row = offset_[block] + a;
     for (int c = 0; c < 6; ++c) {
       j_[(2 * row + side) * 6 + c] = J(a, c);
       g_[(2 * row + side) * 6 + c] = G(c, a);
     }
+    noteSideSet(block, side, &j_[(2 * row + side) * 6], 6);
+    noteSideSet(block, side, &g_[(2 * row + side) * 6], 6);
   }
+  body_[2 * block + side] = body;
   entries_.reset();
   diagonal_.clear();
 }
@@ -42,8 +52,10 @@ void BodySpaceDelassus::setSide(int block, int side, int body,
 void BodySpaceDelassus::setSide(int block, int side, int body, const double* J, const double* G) {
   if (block < 0 || block >= blockCount() || side < 0 || side > 1 || body < 0 || body >= bodies_)
     throw std::invalid_argument("BodySpaceDelassus::setSide: bad block, side or body");
-  body_[2 * block + side] = body;
   const int k = size_[block];
+  noteSideSet(block, side, J, static_cast<std::size_t>(6 * k));
+  noteSideSet(block, side, G, static_cast<std::size_t>(6 * k));
+  body_[2 * block + side] = body;
   const auto first = static_cast<std::size_t>((2 * offset_[block] + side) * 6);
   for (int a = 0; a < k; ++a) {  // row a of the block: 12 a further on (two sides per row)
     std::copy_n(J + 6 * a, 6, &j_[first + 12 * a]);
@@ -106,15 +118,22 @@ BodySpaceDelassus BodySpaceDelassus::selectRows(const std::vector<int>& rows) co
       std::copy_n(G(row, side), 6, &out.g_[(2 * k + side) * 6]);
     }
   }
+  out.rescan_ = true;  // the selected rows may leave out this operator's non-finite values
   return out;
 }
 
 bool BodySpaceDelassus::allFinite() const {
   // x * 0 is 0 for finite x and NaN for inf or NaN: one vectorisable pass instead of a branch per
   // number (validate() runs this on every solve).
+  if (!rescan_) return !nonFinite_;
   double s = 0.0;
-  for (const double v : j_) s += v * 0.0;
-  for (const double v : g_) s += v * 0.0;
+  for (int b = 0; b < blockCount(); ++b)
+    for (int side = 0; side < 2; ++side) {
+      if (body_[2 * b + side] < 0) continue;
+      for (int a = 0; a < size_[b]; ++a)
+        for (int c = 0; c < 6; ++c)
+          s += J(offset_[b] + a, side)[c] * 0.0 + G(offset_[b] + a, side)[c] * 0.0;
+    }
   return s == 0.0;
 }
 

@@ -72,7 +72,8 @@ class BodySpaceDelassus {
   /// The operator of the given rows only (each a 1-row block on the same bodies), e.g. the
   /// contacts' normal rows for the split impulse: W' = W restricted to those rows and columns.
   [[nodiscard]] BodySpaceDelassus selectRows(const std::vector<int>& rows) const;
-  /// Every stored number finite.
+  /// Every number of the set sides finite (unset sides hold zeros). O(1) unless a side was
+  /// set twice (then one pass over the set sides): setSide checks what it copies.
   [[nodiscard]] bool allFinite() const;
   /// W with every nonzero block (k, j) of blocks sharing a body, cached after the first call.
   [[nodiscard]] const BlockSparseMatrix& toBlockSparse() const;
@@ -84,10 +85,13 @@ class BodySpaceDelassus {
   [[nodiscard]] const double* J(int row, int side) const { return &j_[(2 * row + side) * 6]; }
   [[nodiscard]] const double* G(int row, int side) const { return &g_[(2 * row + side) * 6]; }
   void computeDiagonalBlock(int b, double* out) const;
+  void noteSideSet(int block, int side, const double* values, std::size_t count);
   int bodies_ = 0;
   std::vector<int> size_, offset_;
   std::vector<int> body_;      // 2 per block, -1 = no unknowns on that side
   std::vector<double> j_, g_;  // 2 x 6 per row: J_s row and G_s column of side s
+  bool nonFinite_ = false;     // a value copied by setSide was inf or NaN
+  bool rescan_ = false;        // a side was set twice: allFinite() checks the stored values
   mutable std::shared_ptr<const BlockSparseMatrix> entries_;  // toBlockSparse() cache
   mutable std::vector<double> diagonal_;                      // diagonalBlocks() cache, 9 per block
 };

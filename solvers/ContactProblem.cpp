@@ -93,9 +93,15 @@ std::optional<std::string> ContactProblem::validate() const {
     msg << "warm start has " << warmStart->size() << " entries, expected " << n;
     return msg.str();
   }
-  if (const BlockSparseMatrix* s = W.blockSparseMatrix(); s && s->blockSizes() != blockSizes())
+  auto samePartition = [&](const std::vector<int>& sizes) {
+    if (sizes.size() != blocks.size()) return false;
+    for (size_t b = 0; b < blocks.size(); ++b)
+      if (sizes[b] != blocks[b].size()) return false;
+    return true;
+  };
+  if (const BlockSparseMatrix* s = W.blockSparseMatrix(); s && !samePartition(s->blockSizes()))
     return std::string("the block partition of W differs from the problem's blocks");
-  if (const BodySpaceDelassus* s = W.bodySpaceOperator(); s && s->blockSizes() != blockSizes())
+  if (const BodySpaceDelassus* s = W.bodySpaceOperator(); s && !samePartition(s->blockSizes()))
     return std::string("the block partition of W differs from the problem's blocks");
   for (size_t b = 0; b < blocks.size(); ++b) {
     const ConstraintBlock& k = blocks[b];
@@ -124,16 +130,24 @@ std::optional<std::string> ContactProblem::validate() const {
       }
     }
   }
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(q[i])) return "q at " + where(blocks, offset, i) + " is not finite";
-  if (warmStart)
+  // One branch-free pass each (x * 0 is 0 for finite x, NaN otherwise); the search for the
+  // first bad entry only when there is one.
+  auto allFinite = [n](const Eigen::VectorXd& v) {
+    double s = 0.0;
+    for (int i = 0; i < n; ++i) s += v[i] * 0.0;
+    return s == 0.0;
+  };
+  if (!allFinite(q))
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(q[i])) return "q at " + where(blocks, offset, i) + " is not finite";
+  if (warmStart && !allFinite(*warmStart))
     for (int i = 0; i < n; ++i)
       if (!std::isfinite((*warmStart)[i]))
         return "warm start at " + where(blocks, offset, i) + " is not finite";
   // Entries of W: non-finite anywhere (stored), diagonal positive.
-  auto diagonalOk = [&](int row, double w) -> std::optional<std::string> {
-    const auto b = static_cast<size_t>(std::upper_bound(offset.begin(), offset.end(), row) -
-                                       offset.begin() - 1);
+  // Row a of block b (the block known: no search per row).
+  auto diagonalOkIn = [&](size_t b, int a, double w) -> std::optional<std::string> {
+    const int row = offset[b] + a;
     const bool frictionlessTangent =
         blocks[b].isContact() && row != offset[b] &&
         (blocks[b].anisotropic ? (row - offset[b] == 1 ? blocks[b].mu1 : blocks[b].mu2)
@@ -145,6 +159,11 @@ std::optional<std::string> ContactProblem::validate() const {
       return s.str();
     }
     return std::nullopt;
+  };
+  auto diagonalOk = [&](int row, double w) -> std::optional<std::string> {
+    const auto b = static_cast<size_t>(std::upper_bound(offset.begin(), offset.end(), row) -
+                                       offset.begin() - 1);
+    return diagonalOkIn(b, row - offset[b], w);
   };
   if (const Eigen::MatrixXd* d = W.denseMatrix()) {
     for (int j = 0; j < n; ++j)
@@ -173,16 +192,18 @@ std::optional<std::string> ContactProblem::validate() const {
       }
       const double* v = s->blockValues(s->diagonalBlock(b));
       for (int a = 0; a < s->blockSize(b); ++a)
-        if (auto e = diagonalOk(s->blockOffset(b) + a, v[(s->blockSize(b) + 1) * a])) return e;
+        if (auto e = diagonalOkIn(static_cast<size_t>(b), a, v[(s->blockSize(b) + 1) * a]))
+          return e;
     }
   } else if (const BodySpaceDelassus* s = W.bodySpaceOperator()) {
-    // O(rows): the factors are finite, so is every entry of W; the diagonal from the factors.
+    // O(rows): the factors are finite, so is every entry of W; the diagonal from the factors'
+    // cached blocks (the same partition as the problem's blocks, checked above).
     if (!s->allFinite()) return std::string("W (body-space factors J, M^-1 J^T) is not finite");
-    double d[9];
-    for (int b = 0; b < s->blockCount(); ++b) {
-      s->diagonalBlock(b, d);
-      for (int a = 0; a < s->blockSize(b); ++a)
-        if (auto e = diagonalOk(s->blockOffset(b) + a, d[(s->blockSize(b) + 1) * a])) return e;
+    const std::vector<double>& d = s->diagonalBlocks();
+    for (size_t b = 0; b < blocks.size(); ++b) {
+      const int k = blocks[b].size();
+      for (int a = 0; a < k; ++a)
+        if (auto e = diagonalOkIn(b, a, d[9 * b + static_cast<size_t>((k + 1) * a)])) return e;
     }
   } else {
     for (int i = 0; i < n; ++i) {

@@ -61,8 +61,10 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
     return finish();
   }
   // Start: the given one, else the warm start, kept only if it beats r = 0 (SOLVERS.md (3.6)).
-  Eigen::VectorXd u, r = Eigen::VectorXd::Zero(n);
-  double e = prepared.residual(r, u);
+  // Each candidate's residual keeps its dv (body space), handed to the solver with the chosen
+  // start (PreparedProblem::start) so that it does not compute them again.
+  Eigen::VectorXd u, dv, r = Eigen::VectorXd::Zero(n);
+  double e = prepared.residual(r, u, dv);
   const Eigen::VectorXd* candidate =
       start ? start : (options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr);
   if (candidate) {
@@ -71,10 +73,12 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
     } else {
       Eigen::VectorXd s = prepared.fromOriginal(*candidate);
       prepared.project(s);
-      const double es = prepared.residual(s, u);
+      Eigen::VectorXd dvs;
+      const double es = prepared.residual(s, u, dvs);
       if (es <= e) {
         r = s;
         e = es;
+        dv.swap(dvs);
       } else {
         report.note("warm start ignored: r = 0 has a smaller residual");
       }
@@ -86,6 +90,10 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
     report.nativeResidual = e;
     report.nativeResidualName = "common residual of the start";
   } else {
+    prepared.start.known = true;
+    prepared.start.r = r;
+    prepared.start.dv.swap(dv);
+    prepared.start.residual = e;
     try {
       solvePrepared(prepared, context, r, report);
     } catch (const std::exception& ex) {

@@ -75,7 +75,11 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
   const BodySpaceDelassus* body = p.bodySpace.get();
   Eigen::VectorXd dv;  // body space: M^-1 J^T r, kept current by every block update
   double bestResidual = 0.0;
-  if (body) {  // dv once for both the start's residual and the sweeps (what multiplyAdd does)
+  if (p.startIs(r)) {  // ContactSolver::solve's start: its residual and dv are known
+    bestResidual = p.start.residual;
+    if (body) dv = p.start.dv;
+  } else if (body) {  // dv once for both the start's residual and the sweeps (what multiplyAdd
+                      // does)
     body->bodyVelocities(r, dv);
     u = p.q;
     for (int b = 0; b < nb; ++b) body->addBlockVelocity(b, dv, u.data() + p.offset[b]);

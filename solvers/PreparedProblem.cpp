@@ -4,6 +4,7 @@
 #include <coulomb/solvers/Residual.hpp>
 
 #include <algorithm>
+#include <cstring>
 
 namespace coulomb::solvers {
 
@@ -83,6 +84,25 @@ double PreparedProblem::sweepResidualFromVelocity(const Eigen::VectorXd& r,
 double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u) const {
   velocity(r, u);
   return residualFromVelocity(r, u);
+}
+
+double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u,
+                                 Eigen::VectorXd& dv) const {
+  if (!bodySpace) return residual(r, u);
+  u = q;
+  if (std::all_of(r.data(), r.data() + r.size(), [](double x) { return x == 0.0; })) {
+    // W r = 0: u = q (as velocity()); dv = +0 everywhere, what bodyVelocities gives for r = 0.
+    dv.setZero(6 * bodySpace->bodyCount());
+  } else {  // multiplyAdd's two passes, dv kept
+    bodySpace->bodyVelocities(r, dv);
+    for (int b = 0; b < blockCount(); ++b) bodySpace->addBlockVelocity(b, dv, u.data() + offset[b]);
+  }
+  return residualFromVelocity(r, u);
+}
+
+bool PreparedProblem::startIs(const Eigen::VectorXd& r) const {
+  return start.known && r.size() == start.r.size() &&
+         std::memcmp(r.data(), start.r.data(), sizeof(double) * static_cast<size_t>(r.size())) == 0;
 }
 
 void PreparedProblem::project(Eigen::VectorXd& r) const {

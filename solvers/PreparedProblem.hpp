@@ -33,6 +33,27 @@ struct PreparedProblem {
   double qNorm = 0.0;                   // plainNorm(q)
   double maxDiagonal = 0.0;             // max_i W_ii
 
+  // The start ContactSolver::solve hands to the solver, with what it already computed for it: its
+  // residual (residual() below) and, in body space, dv = M^-1 J^T r. A solver starting from this
+  // very r (startIs) reads them instead of computing them a second time.
+  // A copy of a PreparedProblem does not inherit it: composite solvers copy the problem to change
+  // its W or q (ac_newton's proximal subproblems), for which these values would be wrong.
+  struct KnownStart {
+    KnownStart() = default;
+    KnownStart(const KnownStart& /*other*/) {}
+    KnownStart(KnownStart&&) = default;
+    KnownStart& operator=(const KnownStart& other) {
+      if (this != &other) *this = KnownStart();
+      return *this;
+    }
+    KnownStart& operator=(KnownStart&&) = default;
+    ~KnownStart() = default;
+    bool known = false;
+    Eigen::VectorXd r, dv;  // dv: body space only
+    double residual = 0.0;
+  };
+  KnownStart start;
+
   static PreparedProblem from(const ContactProblem& problem, bool keepBodySpace = false);
 
   [[nodiscard]] int size() const { return static_cast<int>(q.size()); }
@@ -44,6 +65,10 @@ struct PreparedProblem {
   void velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;  // u = W r + q
   // e_rel of (1.8) in this problem's variables; computes u.
   double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;
+  // The same (bit for bit) that also keeps dv = M^-1 J^T r in body space (dv untouched otherwise).
+  double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u, Eigen::VectorXd& dv) const;
+  // True when `start` is known and r is bitwise the same vector.
+  [[nodiscard]] bool startIs(const Eigen::VectorXd& r) const;
   [[nodiscard]] double residualFromVelocity(const Eigen::VectorXd& r,
                                             const Eigen::VectorXd& u) const;
   // The same with sweepNorm (round-off apart): Gauss-Seidel's convergence checks.

@@ -18,9 +18,7 @@ bool normalDiagonal(const ContactProblem& problem, const std::vector<int>& offse
   }
   if (const BodySpaceDelassus* body = problem.W.bodySpaceOperator()) {
     if (body->blockCount() != static_cast<int>(problem.blocks.size())) return false;
-    double d[9];
-    body->diagonalBlock(block, d);
-    value = d[0];
+    value = body->diagonalBlocks()[9 * static_cast<std::size_t>(block)];  // cached W_bb
     return true;
   }
   const BlockSparseMatrix* sparse = problem.W.blockSparseMatrix();
