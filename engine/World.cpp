@@ -1,3 +1,4 @@
+#include <coulomb/engine/AllocatorTuning.hpp>
 #include <coulomb/engine/BodyBuilder.hpp>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/ImpactPropagation.hpp>
@@ -38,6 +39,7 @@ bool isKnownSolverRequest(const solvers::SolverRegistry& registry, const std::st
 
 World::World(WorldSettings settings)
     : settings_(std::move(settings)), collision_(settings_.collision) {
+  tuneAllocatorForStepping();  // keep the pages a step frees mapped (AllocatorTuning.hpp)
   if (auto problem = settings_.validate()) throw CoulombError("world settings: " + *problem);
   if (!isKnownSolverRequest(registry_, settings_.solver))
     throw CoulombError("world settings: unknown solver '" + settings_.solver +
@@ -48,6 +50,12 @@ void World::setSolver(const std::string& solver) {
   if (!isKnownSolverRequest(registry_, solver))
     throw CoulombError("setSolver: unknown solver '" + solver + "' (see `coulomb solvers`)");
   settings_.solver = solver;
+}
+
+void World::setPromoteFallbacks(bool on) {
+  settings_.promoteFallbacks = on;
+  if (!on)
+    for (std::size_t i = 0; i < state_.size(); ++i) promotion_.reset(i);
 }
 
 void World::setSolverOverride(BodyId id, const std::string& solver) {
@@ -73,12 +81,14 @@ BodyId World::createBody(const BodyDesc& desc) {
     names_.emplace_back();
     masses_.emplace_back();
     solverOverrides_.emplace_back();
+    promotion_.resize(solverOverrides_.size());
   }
   state_.assign(slot, desc.motionType, body.comPose, desc.linearVelocity, desc.angularVelocity,
                 body.massProperties.mass, body.massProperties.inertiaAboutCom);
   names_[slot] = desc.name;
   quarantine_.reset(slot);
   solverOverrides_[slot] = desc.solver;
+  promotion_.reset(slot);
   masses_[slot] = body.massProperties;
   const BodyId id{static_cast<std::uint32_t>(slot), generations_[slot]};
   for (ResolvedShape& s : body.shapes) {
@@ -340,10 +350,16 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
   for (std::size_t k = jointBlocks; k < jointBlocks + rows.blocks.size(); ++k)
     normals.normalRows.push_back(assembled.slots[k].offset);
   const std::string& override = solverOverrides_[island.bodies.front()];
-  const solvers::SolvePlan plan = solvers::SolverChooser().choose(
-      assembled.problem, {assembled.degreesOfFreedom},
-      override.empty() ? settings_.solver : override, settings_.solverOptions);
+  const std::string& requested = override.empty() ? settings_.solver : override;
+  // Automatic plans only (and WorldSettings::promoteFallbacks): the solver that finished this
+  // island's last step goes first (a named solver always runs first).
+  const bool automatic = settings_.promoteFallbacks && (requested.empty() || requested == "auto");
+  bool promoted = false;
+  solvers::SolvePlan plan = solvers::SolverChooser().choose(
+      assembled.problem, {assembled.degreesOfFreedom}, requested, settings_.solverOptions);
+  if (automatic) plan = promotion_.apply(island, std::move(plan), promoted);
   solvers::PlanOutcome outcome = solvers::solveWithFallback(assembled.problem, plan, registry_);
+  promotion_.record(island, plan, outcome, promoted || !automatic);
   applyImpulses(all, assembled.slots, outcome.best.impulses, state_);  // v+ = v* + M^-1 J^T r
   articulations_.applyImpulses(all, assembled.slots, outcome.best.impulses, state_);  // qd+
   articulations_.storeImpulses(all, treeBlocks, assembled.slots, outcome.best.impulses);

@@ -10,6 +10,7 @@
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/Quarantine.hpp>
 #include <coulomb/engine/Sleep.hpp>
+#include <coulomb/engine/SolverPromotion.hpp>
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
@@ -107,6 +108,8 @@ class World {
   /// bodies with different overrides, the one of its smallest body index wins.
   void setSolverOverride(geometry::BodyId id, const std::string& solver);
   void setSolver(const std::string& solver);  // WorldSettings::solver, validated
+  /// WorldSettings::promoteFallbacks; off also drops the promotions already recorded.
+  void setPromoteFallbacks(bool on);
 
   /// Validates `desc` (joints/JointDef.hpp; frames in each body's reference frame) and adds the
   /// joint. Throws CoulombError naming the joint and the problem (stale body, non-unit axis, NaN
@@ -157,6 +160,7 @@ class World {
   std::vector<geometry::Collider> colliders_;
   std::uint32_t colliderCounter_ = 0;
   std::vector<std::string> solverOverrides_;  // per slot; "" = settings_.solver
+  SolverPromotion promotion_;                 // per slot: a fallback to run first next step
   geometry::CollisionPipeline collision_;
   IslandBuilder islandBuilder_;
   Sleep sleep_;

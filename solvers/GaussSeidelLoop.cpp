@@ -87,6 +87,10 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
   } else {
     bestResidual = p.residual(r, u);
   }
+  // The options' window shortens the solver's own (SolverOptions::stallWindow).
+  const int stallWindow = context.options().stallWindow > 0
+                              ? std::min(context.options().stallWindow, settings.stallWindow)
+                              : settings.stallWindow;
   double windowBest = bestResidual;
   int windowStart = 0;
   report.status = SolverStatus::MaxIterations;
@@ -156,7 +160,7 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
       report.note("non-finite residual");
       break;
     }
-    if (sweep - windowStart >= settings.stallWindow) {
+    if (sweep - windowStart >= stallWindow) {
       if (bestResidual > (1.0 - settings.stallDecrease) * windowBest) {
         if (settings.omegaAfterStall > 0 && !omegaSwitched) {
           omegaSwitched = true;
@@ -170,7 +174,7 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
           report.status = SolverStatus::Stalled;
           std::ostringstream s;
           s << "best residual fell by less than " << settings.stallDecrease * 100 << " % in "
-            << settings.stallWindow << " sweeps";
+            << stallWindow << " sweeps";
           report.note(s.str());
           break;
         }

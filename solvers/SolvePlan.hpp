@@ -36,6 +36,14 @@ struct SolvePlan {
   // Per-attempt iteration caps, parallel to `solvers` (missing or 0 = options.maxIterations), e.g.
   // a short Gauss-Seidel try before Newton on tiny problems.
   std::vector<int> iterationCaps;
+  // Per-attempt stall windows (SolverOptions::stallWindow), parallel to `solvers` (missing or 0 =
+  // options.stallWindow), e.g. a pgs that gives way to Newton as soon as it stagnates.
+  std::vector<int> stallWindows;
+  // Per-attempt tolerances, parallel to `solvers` (missing or 0 = options.tolerance), e.g. a
+  // tighter one for a solver that must iterate from a start just below the plan's tolerance
+  // (engine/SolverPromotion). An attempt that ends above its own tolerance but within the plan's
+  // counts as converged.
+  std::vector<double> tolerances;
   ProblemFeatures features;  // what the choice was based on (auto plans)
 };
 

@@ -39,8 +39,20 @@ PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& pl
     options.timeLimitSeconds = std::max(options.timeLimitSeconds - used, 1e-6);
     if (attempt < plan.iterationCaps.size() && plan.iterationCaps[attempt] > 0)
       options.maxIterations = plan.iterationCaps[attempt];
+    if (attempt < plan.stallWindows.size() && plan.stallWindows[attempt] > 0)
+      options.stallWindow = plan.stallWindows[attempt];
+    if (attempt < plan.tolerances.size() && plan.tolerances[attempt] > 0)
+      options.tolerance = plan.tolerances[attempt];
     SolveOutcome outcome = haveBest ? solver->solve(problem, options, out.best.impulses)
                                     : solver->solve(problem, options);
+    if (!outcome.report.converged() && options.tolerance < plan.options.tolerance &&
+        outcome.report.residual <= plan.options.tolerance &&
+        (outcome.report.status == SolverStatus::MaxIterations ||
+         outcome.report.status == SolverStatus::Stalled)) {
+      outcome.report.status =
+          SolverStatus::Converged;  // short of its own target, within the plan's
+      outcome.report.note("stopped above its tighter tolerance, within the plan's");
+    }
     out.attempts.push_back(outcome.report);
     tried += (tried.empty() ? "" : " -> ") + name + " (" + statusName(outcome.report.status) + ")";
     if (outcome.report.status == SolverStatus::InvalidProblem) {

@@ -112,7 +112,8 @@ SolvePlan SolverChooser::choose(const ContactProblem& problem, const IslandFeatu
     plan.reason = "auto: " + plan.reason;
     return plan;
   }
-  plan.iterationCaps.clear();                      // a user's choice runs with the user's options
+  plan.iterationCaps.clear();  // a user's choice runs with the user's options
+  plan.stallWindows.clear();
   if (requested.find(',') != std::string::npos) {  // the user's own chain
     plan.solvers = splitChain(requested);
     plan.reason = "requested chain " + requested;
@@ -177,6 +178,7 @@ SolvePlan SolverChooser::automatic(const ProblemFeatures& f) const {
     // Gauss-Seidel first on piles and towers (Kaplas: pgs 2.7x faster than ac_newton); Newton as
     // the fallback for the stacks where Gauss-Seidel stalls (BoxesStack).
     plan.solvers = {"pgs", "ac_newton", "bgs"};
+    plan.stallWindows = {settings_.pileStallSweeps};
     plan.reason = std::string(pileByNu ? "pile or tower by nu" : "large island, dofs unknown") +
                   " (" + what + "): pgs, then ac_newton";
     return plan;

@@ -44,6 +44,12 @@ struct ChooserSettings {
   // [-] mass ratio kappa above which Newton goes first whatever nu (Gauss-Seidel stagnates on
   // large mass ratios, SOLVERS.md section 9). Default 1e3.
   double newtonMassRatio = 1e3;
+  // [sweeps] stall window of pgs on piles and towers, where ac_newton is the fallback: pgs gives
+  // way once its best residual fell by < 1 % over this many sweeps. Default 20: on a 55-box
+  // pyramid after ~4 500 steps pgs stagnates just above the tolerance every other step and spent
+  // its 200-sweep cap (~6 ms) before Newton's one iteration; every pgs step of the conformance
+  // runs that converges needs < 20 sweeps at a stall (docs/benchmarks.md, "Long runs").
+  int pileStallSweeps = 20;
 };
 
 /// Measures the features of SOLVERS.md section 9 (one pass over q and W's diagonal blocks).

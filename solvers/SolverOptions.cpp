@@ -15,6 +15,10 @@ std::optional<std::string> validateOptions(const SolverOptions& options) {
     s << "maxIterations = " << options.maxIterations << ": must be >= 0 (0 = solver default)";
     return s.str();
   }
+  if (options.stallWindow < 0) {
+    s << "stallWindow = " << options.stallWindow << ": must be >= 0 (0 = solver default)";
+    return s.str();
+  }
   if (!(options.timeLimitSeconds > 0.0)) {
     s << "timeLimitSeconds = " << options.timeLimitSeconds << ": must be > 0";
     return s.str();

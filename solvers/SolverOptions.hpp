@@ -26,6 +26,12 @@ struct SolverOptions {
   // Record (iteration, seconds, e_rel) after every iteration in SolverReport::history. Default off:
   // it costs one residual evaluation per iteration for solvers that do not compute it anyway.
   bool recordHistory = false;
+  // [iterations] 0 = each solver's own stall test (pgs 5000 sweeps, bgs 2000). A positive value
+  // shortens the Gauss-Seidel test to this window: stop (Stalled) when the best residual fell by
+  // less than 1 % over it. The automatic plan gives pgs 20 sweeps before its Newton fallback
+  // (ChooserSettings::pileStallSweeps): a pgs that stagnates just above the tolerance otherwise
+  // spends its whole sweep cap before Newton takes over.
+  int stallWindow = 0;
 };
 
 // The first invalid field, or nullopt.

@@ -32,6 +32,7 @@ void transferSettings(Ar& ar, WorldSettings& s) {
   io(ar, s.solverOptions.timeLimitSeconds);
   io(ar, s.solverOptions.useWarmStart);
   io(ar, s.solverOptions.recordHistory);
+  io(ar, s.promoteFallbacks);
   io(ar, s.contact.restitutionThreshold);
   io(ar, s.contact.speculativeContacts);
   ioEnum(ar, s.contact.penetration.method, PenetrationMethod::None);
@@ -183,6 +184,9 @@ struct SnapshotAccess {
     io(ar, w.solverOverrides_);
     if constexpr (Ar::kLoading)
       if (w.solverOverrides_.size() != w.state_.size()) ar.fail("corrupt: solver overrides");
+    io(ar, w.promotion_.names());
+    if constexpr (Ar::kLoading)
+      if (w.promotion_.names().size() != w.state_.size()) ar.fail("corrupt: solver promotions");
     transferBodyState(ar, w.state_);
     io(ar, w.quarantine_.flags_);
     if constexpr (Ar::kLoading) checkSizes(ar, w);

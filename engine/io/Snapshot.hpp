@@ -4,9 +4,10 @@
 //
 // What is saved: every body slot's state (pose, velocities, inverse masses and inertias, motion
 // type, sleep flag, pending forces), the quarantine flags, the settings (all of them), the
-// solver overrides, the contact cache (manifolds with their warm-start impulses), the sleep
-// timers, every joint's broken flag, warm starts and last reaction, every articulation's q, qd,
-// pending joint forces, link poses, motor targets and warm starts, the step counter and time.
+// solver overrides and promotions, the contact cache (manifolds with their warm-start impulses),
+// the sleep timers, every joint's broken flag, warm starts and last reaction, every articulation's
+// q, qd, pending joint forces, link poses, motor targets and warm starts, the step counter and
+// time.
 //
 // What is not saved: the *structure* (shapes, colliders, masses as described, joint definitions,
 // articulation models). A snapshot is restored into a World built from the same scene (same
@@ -30,8 +31,9 @@
 
 namespace coulomb::engine::io {
 
-// 2: collision.speculativeSweep; 3: contact.elasticTurning and the contact points' solved rows.
-inline constexpr std::uint32_t kSnapshotVersion = 3;
+// 2: collision.speculativeSweep; 3: contact.elasticTurning and the contact points' solved rows;
+// 4: promoteFallbacks and the solver promotions (engine/SolverPromotion).
+inline constexpr std::uint32_t kSnapshotVersion = 4;
 
 /// The snapshot of `world` as bytes (header included).
 [[nodiscard]] std::vector<std::uint8_t> saveSnapshot(const World& world);

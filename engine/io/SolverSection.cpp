@@ -82,7 +82,7 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
   node.allowOnly({"name", "tolerance", "max_iterations", "time_limit", "warm_start",
                   "restitution_threshold", "speculative_contacts", "speculative_margin",
                   "speculative_sweep", "penetration", "impact_law", "touching_tolerance",
-                  "max_impact_sweeps", "elastic_turning"});
+                  "max_impact_sweeps", "elastic_turning", "promote_fallbacks"});
   solvers::SolverOptions& options = settings.solverOptions;
   if (node.has("name")) settings.solver = parseSolverRequest(node.child("name"));
   if (node.has("tolerance")) options.tolerance = node.child("tolerance").positiveNumber();
@@ -93,6 +93,8 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
   }
   if (node.has("time_limit")) options.timeLimitSeconds = node.child("time_limit").positiveNumber();
   if (node.has("warm_start")) options.useWarmStart = parseBool(node.child("warm_start"));
+  if (node.has("promote_fallbacks"))
+    settings.promoteFallbacks = parseBool(node.child("promote_fallbacks"));
   ContactSettings& contact = settings.contact;
   if (node.has("restitution_threshold"))
     contact.restitutionThreshold = nonNegative(node.child("restitution_threshold"));

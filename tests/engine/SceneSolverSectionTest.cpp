@@ -43,7 +43,7 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
   const engine::io::Scene scene = parse(R"({
       "name": "pgs", "tolerance": 1e-4, "max_iterations": 50, "time_limit": 0.5,
       "warm_start": false, "restitution_threshold": 0.1, "speculative_contacts": false,
-      "speculative_margin": 0.01,
+      "speculative_margin": 0.01, "promote_fallbacks": false,
       "penetration": {"method": "baumgarte", "beta": 0.3, "slop": 0.001, "iterations": 7}})",
                                         R"("solver": "ac_newton",)");
   const engine::WorldSettings& s = scene.settings;
@@ -52,6 +52,8 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
   EXPECT_EQ(s.solverOptions.maxIterations, 50);
   EXPECT_EQ(s.solverOptions.timeLimitSeconds, 0.5);
   EXPECT_FALSE(s.solverOptions.useWarmStart);
+  EXPECT_FALSE(s.promoteFallbacks);
+  EXPECT_TRUE(engine::WorldSettings{}.promoteFallbacks);
   EXPECT_EQ(s.contact.restitutionThreshold, 0.1);
   EXPECT_FALSE(s.contact.speculativeContacts);
   EXPECT_EQ(s.collision.speculativeMargin, 0.01);
@@ -93,4 +95,7 @@ TEST(SceneSolverSection, BadValuesNameTheJsonPath) {
   EXPECT_NE(errorOf(R"({"warm_start": 1})").find("solver.warm_start: expected true or false"),
             std::string::npos);
   EXPECT_NE(errorOf(R"({"speculative_margin": -0.1})").find("must be >= 0"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"promote_fallbacks": "yes"})")
+                .find("solver.promote_fallbacks: expected true or false"),
+            std::string::npos);
 }

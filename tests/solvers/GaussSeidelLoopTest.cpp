@@ -81,3 +81,28 @@ TEST(GaussSeidelLoop, StallIsReportedAndTimeLimitHonoured) {
   EXPECT_EQ(out.report.status, SolverStatus::MaxIterations);
   EXPECT_LT(out.report.seconds, 1.0);
 }
+
+TEST(GaussSeidelLoop, OptionsStallWindowShortensTheSolversOwn) {
+  // The frozen update never lowers the residual: the stall test fires at the first check after
+  // the window (SolverOptions::stallWindow = 20 < the settings' 500), not at the 500-sweep one.
+  const ContactProblem p = fixtures::randomMechanical(6, 10, 0.5, 9);
+  const PreparedProblem pp = PreparedProblem::from(p);
+  const ContactUpdate frozen = [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {};
+  auto sweepsUntilStall = [&](int optionsWindow) {
+    SolverOptions o;
+    o.tolerance = 0;  // unreachable
+    o.maxIterations = 100000;
+    o.stallWindow = optionsWindow;
+    const SolveContext context(o, SolveContext::Clock::now());
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(pp.size());
+    SolverReport report;
+    GaussSeidelSettings s;
+    s.stallWindow = 500;
+    runGaussSeidel(pp, context, s, frozen, r, report);
+    EXPECT_EQ(report.status, SolverStatus::Stalled);
+    return report.iterations;
+  };
+  EXPECT_LE(sweepsUntilStall(20), 25);
+  EXPECT_GE(sweepsUntilStall(0), 500);     // 0: the solver's own window
+  EXPECT_GE(sweepsUntilStall(1000), 500);  // never longer than the solver's own
+}

@@ -96,3 +96,26 @@ TEST(SolveWithFallback, AutoIsDeterministic) {
   EXPECT_EQ(a.best.impulses, b.best.impulses);
   EXPECT_EQ(a.iterations(), b.iterations());
 }
+
+TEST(SolveWithFallback, PerAttemptToleranceIteratesAndCountsWithinThePlans) {
+  // The attempt's own tolerance (1e-14) makes pgs iterate its 3 capped sweeps; it ends above that
+  // but below the plan's tolerance, so it counts as converged and no fallback runs.
+  const ContactProblem p = fixtures::randomMechanical(6, 30, 0.5, 6);
+  SolvePlan plan;
+  plan.solvers = {"pgs", "ac_newton"};
+  plan.iterationCaps = {3};
+  plan.tolerances = {1e-14};
+  plan.options.tolerance = 0.5;
+  const PlanOutcome out = solveWithFallback(p, plan, SolverRegistry::builtIn());
+  ASSERT_EQ(out.attempts.size(), 1u);
+  EXPECT_EQ(out.attempts[0].iterations, 3);
+  EXPECT_GT(out.best.report.residual, 1e-14);
+  EXPECT_LE(out.best.report.residual, 0.5);
+  EXPECT_TRUE(out.best.report.converged());
+  EXPECT_NE(out.best.report.message.find("within the plan's"), std::string::npos);
+  // Above the plan's tolerance it is not converged, and the fallback runs.
+  plan.options.tolerance = 1e-13;
+  const PlanOutcome strict = solveWithFallback(p, plan, SolverRegistry::builtIn());
+  EXPECT_EQ(strict.attempts.size(), 2u);
+  EXPECT_FALSE(strict.attempts[0].converged());
+}

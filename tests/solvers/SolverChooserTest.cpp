@@ -53,6 +53,11 @@ TEST(SolverChooser, NuDecidesBetweenNewtonAndGaussSeidel) {
   EXPECT_EQ(pile.solvers.front(), "pgs") << pile.reason;
   EXPECT_NE(pile.reason.find("nu = 2.5"), std::string::npos) << pile.reason;
   EXPECT_EQ(pile.solvers[1], "ac_newton");  // Newton as the fallback of a stalled pile
+  // pgs gives way to Newton once it stagnates (ChooserSettings::pileStallSweeps); a user's
+  // request runs with the user's options.
+  ASSERT_FALSE(pile.stallWindows.empty());
+  EXPECT_EQ(pile.stallWindows.front(), ChooserSettings{}.pileStallSweeps);
+  EXPECT_TRUE(SolverChooser().choose(p, {24}, "pgs", {}).stallWindows.empty());
 }
 
 TEST(SolverChooser, MassRatioForcesNewton) {

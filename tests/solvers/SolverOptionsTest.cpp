@@ -23,4 +23,7 @@ TEST(SolverOptions, NamesTheBadField) {
   o = {};
   o.timeLimitSeconds = 0;
   EXPECT_NE(validateOptions(o)->find("timeLimitSeconds"), std::string::npos);
+  o = {};
+  o.stallWindow = -1;
+  EXPECT_NE(validateOptions(o)->find("stallWindow"), std::string::npos);
 }

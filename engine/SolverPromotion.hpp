@@ -1,0 +1,60 @@
+#pragma once
+// Fallback promotion: the solver that had to finish an island's step goes first in the next one.
+//
+// Why (docs/benchmarks.md, "Long runs"): when pgs stagnates just above the tolerance on a resting
+// pile, ac_newton finishes the step, and its impulses then carry a one-off correction of the
+// velocity error pgs left in the bodies. Warm-started from those impulses, the next step starts
+// off by that correction, in the slow mode pgs could not reduce: pgs stalls again and Newton runs
+// again, every other step (a 55-box pyramid from step ~4 500 on: 2 300 Newton fallbacks in 10 000
+// steps, mean 3.2 ms per step). One more step with Newton first, solved to a tighter tolerance
+// (kPromotedToleranceScale), returns impulses without the correction; pgs then needs 0-1 sweeps
+// for the next ~15 steps (8 fallbacks in 10 000 steps, mean 0.40 ms per step).
+//
+// Automatic plans only (World::solveIsland). State: per body slot, the name of the solver to
+// promote ("" = none), saved in snapshots so a continued run stays bit-identical. A promotion is
+// used once: the promoted step never promotes.
+#include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/solvers/SolvePlan.hpp>
+#include <coulomb/solvers/SolveWithFallback.hpp>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace coulomb::engine {
+
+/// [-] The promoted attempt's tolerance as a fraction of the plan's: it must actually iterate
+/// (its start is often just below the plan's tolerance) and one Newton step goes from ~1e-6 to
+/// ~1e-9. Default 0.01.
+inline constexpr double kPromotedToleranceScale = 0.01;
+/// [iterations] Cap of the promoted attempt: it polishes a step whose start is already near the
+/// tolerance. Default 5: Newton needs 1-2 there; on a 55-box pyramid a few such steps needed
+/// 8-49 iterations (5-50 ms each) to reach the tighter tolerance, which the cap avoids (the
+/// attempt still counts as converged within the plan's tolerance).
+inline constexpr int kPromotedIterationCap = 5;
+
+class SolverPromotion {
+ public:
+  void resize(std::size_t slots) { promoted_.resize(slots); }
+  void reset(std::size_t slot) { promoted_[slot].clear(); }
+
+  /// `plan` with the solver promoted for one of the island's bodies moved to the front (capped at
+  /// kPromotedIterationCap, no stall window, its tolerance scaled), or unchanged when none is or
+  /// when the plan does not hold it. `promoted` tells which.
+  [[nodiscard]] solvers::SolvePlan apply(const Island& island, solvers::SolvePlan plan,
+                                         bool& promoted) const;
+  /// After the solve: promote the solver that finished the step when the plan's first solver did
+  /// not converge and a later one did; clear the island's promotions otherwise, and always when
+  /// `final` (the plan was itself promoted, or a named solver's: World promotes in automatic
+  /// plans only, a named solver always runs first).
+  void record(const Island& island, const solvers::SolvePlan& plan,
+              const solvers::PlanOutcome& outcome, bool final);
+
+  [[nodiscard]] std::vector<std::string>& names() { return promoted_; }  // snapshots
+  [[nodiscard]] const std::vector<std::string>& names() const { return promoted_; }
+
+ private:
+  std::vector<std::string> promoted_;  // per body slot
+};
+
+}  // namespace coulomb::engine

@@ -1,0 +1,72 @@
+// Fallback promotion (engine/SolverPromotion; docs/benchmarks.md, "Long runs"). From step 330 of
+// pyramid_10 (tests/data/snapshots) pgs stagnates just above the tolerance and ac_newton finishes
+// the step; the impulses of that step carry a one-off correction, so with the warm start the next
+// steps alternate pgs -> ac_newton. With promotion (the default) the fallback runs first once more
+// and the alternation stops; without it the alternation shows.
+#include <gtest/gtest.h>
+#include <coulomb/engine/World.hpp>
+#include <coulomb/engine/io/Snapshot.hpp>
+
+#include "scenes/SceneRegistry.hpp"
+
+#include <string>
+
+using namespace coulomb;
+
+namespace {
+
+struct LongRunCounts {
+  int steps = 0, fallbacks = 0, newtonSolves = 0, promoted = 0, unconverged = 0;
+  double maxResidual = 0.0;
+};
+
+LongRunCounts continuePyramid(bool promote, int steps) {
+  const engine::io::Scene scene = scenes::loadBuiltinScene("pyramid_10");
+  engine::World world = engine::io::buildWorld(scene);
+  engine::io::loadSnapshotFile(
+      world, std::string(COULOMB_TEST_DATA_DIR) + "/snapshots/pyramid_10_step330.snap");
+  world.setPromoteFallbacks(promote);
+  LongRunCounts counts;
+  for (int k = 0; k < steps; ++k) {
+    const engine::StepReport report = world.step(scene.settings.timeStep);
+    ++counts.steps;
+    counts.fallbacks += static_cast<int>(report.fallbacks());
+    for (const engine::IslandReport& island : report.islands) {
+      for (const solvers::SolverReport& attempt : island.attempts)
+        counts.newtonSolves += attempt.solver == "ac_newton" ? 1 : 0;
+      if (island.reason.find("first: it finished") != std::string::npos) ++counts.promoted;
+      if (!island.solve.converged()) ++counts.unconverged;
+      counts.maxResidual = std::max(counts.maxResidual, island.solve.residual);
+    }
+  }
+  return counts;
+}
+
+#ifdef COULOMB_SANITIZE
+constexpr int kSteps = 60;  // ASan/UBSan: the first alternations and the promotion are in here
+#else
+constexpr int kSteps = 200;
+#endif
+
+}  // namespace
+
+TEST(FallbackPromotion, AutomaticPlanStopsThePgsNewtonAlternation) {
+  const LongRunCounts c = continuePyramid(true, kSteps);
+  std::printf(
+      "promotion: %d steps, %d fallbacks, %d ac_newton solves, %d promoted, residual max %.3g\n",
+      c.steps, c.fallbacks, c.newtonSolves, c.promoted, c.maxResidual);
+  EXPECT_EQ(c.unconverged, 0);
+  EXPECT_LE(c.maxResidual, 1e-6);
+  EXPECT_GE(c.promoted, 1);   // the mechanism ran
+  EXPECT_LE(c.fallbacks, 4);  // without it: every other step (the test below)
+  EXPECT_LE(c.newtonSolves, 8);
+}
+
+TEST(FallbackPromotion, WithoutPromotionPgsAndNewtonAlternate) {
+  // WorldSettings::promoteFallbacks off: pgs always runs first, ac_newton as its fallback.
+  const LongRunCounts c = continuePyramid(false, kSteps);
+  std::printf("no promotion: %d steps, %d fallbacks, %d ac_newton solves, residual max %.3g\n",
+              c.steps, c.fallbacks, c.newtonSolves, c.maxResidual);
+  EXPECT_EQ(c.promoted, 0);
+  EXPECT_GE(c.fallbacks, kSteps / 4);
+}
