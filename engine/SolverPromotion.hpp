@@ -32,19 +32,27 @@ inline constexpr double kPromotedToleranceScale = 0.01;
 /// 8-49 iterations (5-50 ms each) to reach the tighter tolerance, which the cap avoids (the
 /// attempt still counts as converged within the plan's tolerance).
 inline constexpr int kPromotedIterationCap = 5;
+/// [-] A fallback is promoted only when the plan's first solver ended within this factor of the
+/// tolerance (it stagnated just above it: the alternation's signature). Default 10: on the
+/// pyramid pgs ends at 1.0-2.0e-6 for a 1e-6 tolerance; on the masonry arch pgs ends at ~1e-2
+/// and Newton needs 3-48 iterations after it, where a promoted 5-iteration attempt from the
+/// warm start only failed (0.22) before the usual plan ran.
+inline constexpr double kPromotionNearMiss = 10.0;
 
 class SolverPromotion {
  public:
   void resize(std::size_t slots) { promoted_.resize(slots); }
   void reset(std::size_t slot) { promoted_[slot].clear(); }
 
-  /// `plan` with the solver promoted for one of the island's bodies moved to the front (capped at
-  /// kPromotedIterationCap, no stall window, its tolerance scaled), or unchanged when none is or
-  /// when the plan does not hold it. `promoted` tells which.
+  /// `plan` with the solver promoted for one of the island's bodies run first (capped at
+  /// kPromotedIterationCap, no stall window, its tolerance scaled) and then the whole plan as it
+  /// was (when the short attempt fails, the plan continues from its best iterate), or unchanged
+  /// when none is or when the plan does not hold it. `promoted` tells which.
   [[nodiscard]] solvers::SolvePlan apply(const Island& island, solvers::SolvePlan plan,
                                          bool& promoted) const;
   /// After the solve: promote the solver that finished the step when the plan's first solver did
-  /// not converge and a later one did; clear the island's promotions otherwise, and always when
+  /// not converge but ended within kPromotionNearMiss of the tolerance, and a later one
+  /// converged; clear the island's promotions otherwise, and always when
   /// `final` (the plan was itself promoted, or a named solver's: World promotes in automatic
   /// plans only, a named solver always runs first).
   void record(const Island& island, const solvers::SolvePlan& plan,

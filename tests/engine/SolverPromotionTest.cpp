@@ -28,6 +28,8 @@ solvers::PlanOutcome fellBackTo(const std::string& solver) {
   solvers::PlanOutcome outcome;
   outcome.attempts = {attempt("pgs", solvers::SolverStatus::Stalled),
                       attempt(solver, solvers::SolverStatus::Converged)};
+  outcome.attempts.front().residual = 1.5e-6;  // just above pilePlan's 1e-6
+  outcome.attempts.back().residual = 1e-9;
   outcome.best.report = outcome.attempts.back();
   return outcome;
 }
@@ -61,13 +63,14 @@ TEST(SolverPromotionTest, FallbackGoesFirstOnceWithItsOwnSettings) {
   bool promoted = false;
   const solvers::SolvePlan plan = promotion.apply(island, pilePlan(), promoted);
   ASSERT_TRUE(promoted);
-  EXPECT_EQ(plan.solvers, (std::vector<std::string>{"ac_newton", "pgs", "bgs"}));
-  // pgs keeps its stall window, now second; the promoted attempt is capped and tighter.
-  EXPECT_EQ(plan.stallWindows, (std::vector<int>{0, 20}));
-  ASSERT_FALSE(plan.iterationCaps.empty());
-  EXPECT_EQ(plan.iterationCaps.front(), engine::kPromotedIterationCap);
-  ASSERT_FALSE(plan.tolerances.empty());
+  // The promoted attempt (capped, tighter) goes first; the plan follows unchanged, so a failed
+  // promotion still gets pgs and the full ac_newton fallback.
+  EXPECT_EQ(plan.solvers, (std::vector<std::string>{"ac_newton", "pgs", "ac_newton", "bgs"}));
+  EXPECT_EQ(plan.stallWindows, (std::vector<int>{0, 20, 0, 0}));
+  EXPECT_EQ(plan.iterationCaps, (std::vector<int>{engine::kPromotedIterationCap, 0, 0, 0}));
+  ASSERT_EQ(plan.tolerances.size(), 4u);
   EXPECT_DOUBLE_EQ(plan.tolerances.front(), engine::kPromotedToleranceScale * 1e-6);
+  EXPECT_EQ(plan.tolerances[1], 0.0);
   EXPECT_NE(plan.reason.find("ac_newton first"), std::string::npos);
 
   // The promoted step never promotes again, even when it fell back itself.
@@ -91,6 +94,13 @@ TEST(SolverPromotionTest, OnlyAFallbackThatConvergedAfterAFailedPrimaryIsPromote
   failed.best.report = failed.attempts.back();
   promotion.record(island, pilePlan(), failed, false);
   EXPECT_EQ(promotion.names()[0], "");
+
+  solvers::PlanOutcome farOff = fellBackTo("ac_newton");  // pgs far above the tolerance:
+  farOff.attempts.front().residual = 1e-2;                // Newton did real work, no alternation
+  promotion.record(island, pilePlan(), farOff, false);
+  EXPECT_EQ(promotion.names()[0], "");
+  promotion.record(island, pilePlan(), fellBackTo("ac_newton"), false);
+  EXPECT_EQ(promotion.names()[0], "ac_newton");
 }
 
 TEST(SolverPromotionTest, APromotedSolverOutsideThePlanIsIgnored) {
