@@ -42,7 +42,8 @@ void SolverPromotion::record(const Island& island, const solvers::SolvePlan& pla
   if (!final && outcome.attempts.size() > 1 && !plan.solvers.empty() &&
       !outcome.attempts.front().converged() &&
       outcome.attempts.front().residual <= kPromotionNearMiss * plan.options.tolerance &&
-      outcome.best.report.converged() && outcome.best.report.solver != plan.solvers.front())
+      outcome.best.report.converged() && outcome.best.report.iterations <= kPromotedIterationCap &&
+      outcome.best.report.solver != plan.solvers.front())
     next = outcome.best.report.solver;
   for (const std::int32_t b : island.bodies)
     if (static_cast<std::size_t>(b) < promoted_.size()) promoted_[b] = next;

@@ -30,6 +30,7 @@ solvers::PlanOutcome fellBackTo(const std::string& solver) {
                       attempt(solver, solvers::SolverStatus::Converged)};
   outcome.attempts.front().residual = 1.5e-6;  // just above pilePlan's 1e-6
   outcome.attempts.back().residual = 1e-9;
+  outcome.attempts.back().iterations = 1;
   outcome.best.report = outcome.attempts.back();
   return outcome;
 }
@@ -98,6 +99,11 @@ TEST(SolverPromotionTest, OnlyAFallbackThatConvergedAfterAFailedPrimaryIsPromote
   solvers::PlanOutcome farOff = fellBackTo("ac_newton");  // pgs far above the tolerance:
   farOff.attempts.front().residual = 1e-2;                // Newton did real work, no alternation
   promotion.record(island, pilePlan(), farOff, false);
+  EXPECT_EQ(promotion.names()[0], "");
+  solvers::PlanOutcome slow = fellBackTo("ac_newton");  // a long fallback: no quick finish
+  slow.attempts.back().iterations = engine::kPromotedIterationCap + 1;
+  slow.best.report = slow.attempts.back();
+  promotion.record(island, pilePlan(), slow, false);
   EXPECT_EQ(promotion.names()[0], "");
   promotion.record(island, pilePlan(), fellBackTo("ac_newton"), false);
   EXPECT_EQ(promotion.names()[0], "ac_newton");
