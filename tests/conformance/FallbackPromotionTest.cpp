@@ -9,7 +9,9 @@
 
 #include "scenes/SceneRegistry.hpp"
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 using namespace coulomb;
 
@@ -69,4 +71,34 @@ TEST(FallbackPromotion, WithoutPromotionPgsAndNewtonAlternate) {
               c.steps, c.fallbacks, c.newtonSolves, c.maxResidual);
   EXPECT_EQ(c.promoted, 0);
   EXPECT_GE(c.fallbacks, kSteps / 4);
+}
+
+TEST(FallbackPromotion, APendingPromotionIsPartOfTheSnapshot) {
+  // Save right after a fallback (a promotion pending), restore into a fresh World, and both go on
+  // bit for bit; the restored one runs the promoted solver first.
+  const engine::io::Scene scene = scenes::loadBuiltinScene("pyramid_10");
+  engine::World world = engine::io::buildWorld(scene);
+  engine::io::loadSnapshotFile(
+      world, std::string(COULOMB_TEST_DATA_DIR) + "/snapshots/pyramid_10_step330.snap");
+  world.setPromoteFallbacks(true);
+  bool pending = false;
+  for (int k = 0; k < 40 && !pending; ++k) {
+    const engine::StepReport report = world.step(scene.settings.timeStep);
+    pending = report.fallbacks() > 0;
+  }
+  ASSERT_TRUE(pending) << "no fallback within 40 steps of step 330";
+  const std::vector<std::uint8_t> bytes = engine::io::saveSnapshot(world);
+  engine::World restored = engine::io::buildWorld(scene);
+  engine::io::restoreSnapshot(restored, bytes, "memory");
+  for (int k = 0; k < 20; ++k) {
+    const engine::StepReport a = world.step(scene.settings.timeStep);
+    const engine::StepReport b = restored.step(scene.settings.timeStep);
+    ASSERT_EQ(world.stateHash(), restored.stateHash()) << "step " << k;
+    if (k == 0) {
+      ASSERT_FALSE(b.islands.empty());
+      EXPECT_NE(b.islands.front().reason.find("first: it finished"), std::string::npos)
+          << b.islands.front().reason;
+      EXPECT_EQ(a.islands.front().reason, b.islands.front().reason);
+    }
+  }
 }
