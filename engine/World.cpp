@@ -339,6 +339,7 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
   if (settings_.contact.impactLaw == ImpactLaw::Propagating)  // pairwise impacts change v* first
     propagateImpacts(contactPart, manifolds, settings_.contact, h, state_);
   rows = emitContactRows(contactPart, manifolds, state_, settings_.contact, h, sources);
+  all.blocks.reserve(all.blocks.size() + rows.blocks.size());
   all.blocks.insert(all.blocks.end(), rows.blocks.begin(), rows.blocks.end());
   const std::size_t treeBlocks = all.blocks.size();  // tree limits and closures last
   articulations_.emitRows(island, state_, h, all);
