@@ -7,7 +7,7 @@
 // its own mmap (M_MMAP_THRESHOLD): each step then faults the same pages in again. glibc raises both
 // thresholds by itself only after a large mmapped block is freed, so whether a run pays depends on
 // its history: a 55-box pyramid continued from a snapshot took 3.4 ms per step instead of 0.35 ms
-// (docs/benchmarks.md, "Allocator"). World's constructor therefore fixes both thresholds once per
+// (docs/tuning.md, "Allocator"). World's constructor therefore fixes both thresholds once per
 // process: freed memory up to kTrimThresholdBytes stays mapped, blocks below kMmapThresholdBytes
 // come from the heap. Other C libraries, and sanitizer builds (their own allocator), are left
 // alone; so is a process that sets COULOMB_KEEP_ALLOCATOR in its environment.

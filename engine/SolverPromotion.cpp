@@ -37,9 +37,9 @@ solvers::SolvePlan SolverPromotion::apply(const Island& island, solvers::SolvePl
 }
 
 void SolverPromotion::record(const Island& island, const solvers::SolvePlan& plan,
-                             const solvers::PlanOutcome& outcome, bool final) {
+                             const solvers::PlanOutcome& outcome, bool noPromotion) {
   std::string next;
-  if (!final && outcome.attempts.size() > 1 && !plan.solvers.empty() &&
+  if (!noPromotion && outcome.attempts.size() > 1 && !plan.solvers.empty() &&
       !outcome.attempts.front().converged() &&
       outcome.attempts.front().residual <= kPromotionNearMiss * plan.options.tolerance &&
       outcome.best.report.converged() && outcome.best.report.iterations <= kPromotedIterationCap &&

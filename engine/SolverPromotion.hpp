@@ -55,10 +55,10 @@ class SolverPromotion {
   /// converged within kPromotedIterationCap iterations (a quick finish from a near miss: the
   /// alternation's signature; on the 210-box pyramid, bgs -> pgs fallbacks of ~170 sweeps
   /// promoted made it slower, 11.7 -> 14.6 ms/step over 3000 steps); clear the island's promotions
-  /// otherwise, and always when `final` (the plan was itself promoted, or a named solver's: World
-  /// promotes in automatic plans only, a named solver always runs first).
+  /// otherwise, and always when `noPromotion` (the plan was itself promoted, or a named solver's:
+  /// World promotes in automatic plans only, a named solver always runs first).
   void record(const Island& island, const solvers::SolvePlan& plan,
-              const solvers::PlanOutcome& outcome, bool final);
+              const solvers::PlanOutcome& outcome, bool noPromotion);
 
   [[nodiscard]] std::vector<std::string>& names() { return promoted_; }  // snapshots
   [[nodiscard]] const std::vector<std::string>& names() const { return promoted_; }
