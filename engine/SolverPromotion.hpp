@@ -38,6 +38,12 @@ inline constexpr int kPromotedIterationCap = 5;
 /// and Newton needs 3-48 iterations after it, where a promoted 5-iteration attempt from the
 /// warm start only failed (0.22) before the usual plan ran.
 inline constexpr double kPromotionNearMiss = 10.0;
+/// [unknowns] Only islands with more unknowns are promoted (World::solveIsland): there a Newton
+/// fallback is a sparse LU (~6 ms on the 1 200-unknown pyramid), while below it it is a dense LU
+/// of a few hundred rows (< 1 ms). Default 300, the Newton dense threshold. Measured: promoting
+/// on the masonry arch (216 unknowns) changed its trajectory so that its final indeterminate
+/// answer missed the abutment criterion (1.3 % against 1e-3); without it 7.9e-8.
+inline constexpr int kPromotionMinUnknowns = 300;
 
 class SolverPromotion {
  public:

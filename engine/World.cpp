@@ -354,7 +354,8 @@ IslandReport World::solveIsland(const Island& island, double h, joints::RowSet& 
   const std::string& requested = override.empty() ? settings_.solver : override;
   // Automatic plans only (and WorldSettings::promoteFallbacks): the solver that finished this
   // island's last step goes first (a named solver always runs first).
-  const bool automatic = settings_.promoteFallbacks && (requested.empty() || requested == "auto");
+  const bool automatic = settings_.promoteFallbacks && (requested.empty() || requested == "auto") &&
+                         assembled.problem.size() > kPromotionMinUnknowns;
   bool promoted = false;
   solvers::SolvePlan plan = solvers::SolverChooser().choose(
       assembled.problem, {assembled.degreesOfFreedom}, requested, settings_.solverOptions);
