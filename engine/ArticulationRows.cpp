@@ -59,9 +59,14 @@ struct ArticulationStage::TreeRows {
   std::vector<Eigen::MatrixXd> jacobians;  // per block: k x nv joint-space rows (both sides)
 };
 
-void ArticulationStage::appendConstraintEdges(std::vector<ConstraintEdge>& edges, double h) {
+void ArticulationStage::appendEdges(std::uint8_t owner, const RowContext& context,
+                                    StepEdges& edges) {
+  const double h = context.h;
   constraints_.clear();
-  firstConstraintEdge_ = edges.size();
+  const auto add = [&](TreeConstraint c, ConstraintEdge edge) {
+    edges.add(owner, static_cast<std::int32_t>(constraints_.size()), edge);
+    constraints_.push_back(c);
+  };
   for (std::size_t a = 0; a < records_.size(); ++a) {
     Record& r = records_[a];
     if (r.model->nv() == 0) continue;
@@ -78,40 +83,28 @@ void ArticulationStage::appendConstraintEdges(std::vector<ConstraintEdge>& edges
       for (const auto& [active, kind] :
            {std::pair{lower, ConstraintKind::Lower}, std::pair{upper, ConstraintKind::Upper}}) {
         if (!active) continue;
-        constraints_.push_back({static_cast<std::int32_t>(a), kind, i});
-        edges.push_back({representative, ConstraintEdge::kNoBody});
+        add({static_cast<std::int32_t>(a), kind, i}, {representative, ConstraintEdge::kNoBody});
       }
     }
     for (std::size_t m = 0; m < r.motors.size(); ++m) {  // always active
-      constraints_.push_back(
-          {static_cast<std::int32_t>(a), ConstraintKind::Motor, static_cast<std::int32_t>(m)});
-      edges.push_back({representative, ConstraintEdge::kNoBody});
+      add({static_cast<std::int32_t>(a), ConstraintKind::Motor, static_cast<std::int32_t>(m)},
+          {representative, ConstraintEdge::kNoBody});
     }
     for (int i = 0; i < r.model->linkCount(); ++i) {  // joint friction: always active
       if (r.friction[i] <= 0.0) continue;
-      constraints_.push_back({static_cast<std::int32_t>(a), ConstraintKind::Friction, i});
-      edges.push_back({representative, ConstraintEdge::kNoBody});
+      add({static_cast<std::int32_t>(a), ConstraintKind::Friction, i},
+          {representative, ConstraintEdge::kNoBody});
     }
     for (std::size_t c = 0; c < r.couplings.size(); ++c) {
-      constraints_.push_back(
-          {static_cast<std::int32_t>(a), ConstraintKind::Coupling, static_cast<std::int32_t>(c)});
-      edges.push_back({representative, ConstraintEdge::kNoBody});
+      add({static_cast<std::int32_t>(a), ConstraintKind::Coupling, static_cast<std::int32_t>(c)},
+          {representative, ConstraintEdge::kNoBody});
     }
     for (std::size_t c = 0; c < r.closures.size(); ++c) {
       const int linkB = r.closures[c].linkB;
-      constraints_.push_back(
-          {static_cast<std::int32_t>(a), ConstraintKind::Closure, static_cast<std::int32_t>(c)});
-      edges.push_back({representative, linkB >= 0 ? representative : ConstraintEdge::kNoBody});
+      add({static_cast<std::int32_t>(a), ConstraintKind::Closure, static_cast<std::int32_t>(c)},
+          {representative, linkB >= 0 ? representative : ConstraintEdge::kNoBody});
     }
   }
-}
-
-Island ArticulationStage::withoutTreeConstraints(const Island& island) const {
-  Island out = island;
-  std::erase_if(out.constraints, [&](std::int32_t k) {
-    return static_cast<std::size_t>(k) >= firstConstraintEdge_;
-  });
-  return out;
 }
 
 RowBlock ArticulationStage::jointRateBlock(const Record& r, int i, double s) const {
@@ -274,18 +267,16 @@ RowBlock ArticulationStage::rowBlockOf(const TreeConstraint& c, const geometry::
   return block;
 }
 
-void ArticulationStage::emitRows(const Island& island, const geometry::BodyState& state, double h,
-                                 joints::RowSet& rows) const {
-  for (const std::int32_t k : island.constraints) {
-    if (static_cast<std::size_t>(k) < firstConstraintEdge_) continue;
-    rows.blocks.push_back(rowBlockOf(constraints_[k - firstConstraintEdge_], state, h));
-  }
+void ArticulationStage::emitRows(std::span<const std::int32_t> items, const RowContext& context,
+                                 joints::RowSet& rows) {
+  for (const std::int32_t k : items)
+    rows.blocks.push_back(rowBlockOf(constraints_[k], context.state, context.h));
 }
 
-void ArticulationStage::storeImpulses(const joints::RowSet& rows, std::size_t firstBlock,
+void ArticulationStage::storeImpulses(const joints::RowSet& rows, joints::BlockRange range,
                                       const std::vector<RowBlockSlot>& slots,
-                                      const Eigen::VectorXd& lambda) {
-  for (std::size_t k = firstBlock; k < rows.blocks.size(); ++k) {
+                                      const Eigen::VectorXd& lambda, const RowContext&) {
+  for (std::size_t k = range.first; k < range.end(); ++k) {
     const std::uint64_t key = rows.blocks[k].sourceKey;
     Record& r = records_[(key >> 32) & 0xffffu];
     const auto impulse = lambda.segment(slots[k].offset, slots[k].rows);

@@ -19,6 +19,7 @@
 // edge of the step.
 #include <coulomb/engine/ArticulationDesc.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/engine/RowSource.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Ids.hpp>
@@ -49,7 +50,7 @@ namespace io {
 struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
 }
 
-class ArticulationStage {
+class ArticulationStage final : public RowSource {
  public:
   /// A validated description: the model and the proxy bodies to create (World::createBody).
   struct Prepared {
@@ -99,13 +100,17 @@ class ArticulationStage {
   void markIslandBodies(std::vector<std::uint8_t>& mask) const;
   /// Every link index in `edges` becomes its tree's representative (the root link's proxy).
   void mapEdges(std::vector<ConstraintEdge>& edges) const;
-  /// Appends one edge per active joint limit and loop closure (after every other edge).
-  void appendConstraintEdges(std::vector<ConstraintEdge>& edges, double h);
-  /// The island without the edges appended by appendConstraintEdges.
-  [[nodiscard]] Island withoutTreeConstraints(const Island& island) const;
-  /// Appends the island's limit and closure row blocks (warm-started) to `rows`.
-  void emitRows(const Island& island, const geometry::BodyState& state, double h,
-                joints::RowSet& rows) const;
+  // ---- row source (RowSource.hpp); items index this step's tree constraints ------------------
+  /// One edge per active joint limit, motor, joint friction, coupling and loop closure, on the
+  /// tree's representative (the root link's proxy).
+  void appendEdges(std::uint8_t owner, const RowContext& context, StepEdges& edges) override;
+  /// The limit, motor, friction, coupling and closure blocks of `items` (warm-started).
+  void emitRows(std::span<const std::int32_t> items, const RowContext& context,
+                joints::RowSet& rows) override;
+  /// Keeps the impulses of the blocks `range` as warm starts.
+  void storeImpulses(const joints::RowSet& rows, joints::BlockRange range,
+                     const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda,
+                     const RowContext& context) override;
   /// For ProblemAssembler: adds J_t M^-1 J_t^T of every tree touched by `rows` to `blocks`;
   /// returns the number of joint velocities involved (degrees of freedom).
   int addDelassusBlocks(const joints::RowSet& rows, const geometry::BodyState& state,
@@ -113,9 +118,6 @@ class ArticulationStage {
   /// qd += M^-1 J_t^T lambda for every tree touched by `rows`; refreshes the proxy velocities.
   void applyImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
                      const Eigen::VectorXd& lambda, geometry::BodyState& state);
-  /// Keeps the impulses of the blocks from `firstBlock` on (emitRows' blocks) as warm starts.
-  void storeImpulses(const joints::RowSet& rows, std::size_t firstBlock,
-                     const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda);
   /// q <- q (+) h qd on the joint manifolds; proxies follow forward kinematics.
   void integratePositions(double h, geometry::BodyState& state);
   /// Split impulse: q <- q (+) h M^-1 J_t^T p (pseudo-velocities, then discarded).
@@ -172,9 +174,8 @@ class ArticulationStage {
                                                            const Eigen::VectorXd& lambda) const;
 
   std::vector<Record> records_;
-  std::vector<LinkRef> linkOfBody_;  // per body slot
-  std::vector<TreeConstraint> constraints_;
-  std::size_t firstConstraintEdge_ = 0;
+  std::vector<LinkRef> linkOfBody_;          // per body slot
+  std::vector<TreeConstraint> constraints_;  // this step's, indexed by the edges' items
 };
 
 }  // namespace coulomb::engine

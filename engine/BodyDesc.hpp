@@ -5,6 +5,7 @@
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Collider.hpp>
 #include <coulomb/geometry/SpatialInertia.hpp>
+#include <coulomb/solvers/SolvePolicy.hpp>
 
 #include <optional>
 #include <string>
@@ -31,8 +32,8 @@ struct BodyDesc {
   /// Explicit mass, COM (reference frame) and inertia about the COM (reference axes); overrides
   /// the density. Required for a dynamic body without finite shapes.
   std::optional<geometry::SpatialInertia> mass;
-  /// Contact solver for this body's island ("" = the world's WorldSettings::solver).
-  std::string solver;
+  /// Which solvers this body's island gets (nullopt = the world's WorldSettings::solve.choice).
+  std::optional<solvers::SolverChoice> solver;
 };
 
 }  // namespace coulomb::engine

@@ -1,6 +1,7 @@
 #pragma once
 // Settings of the contact stage of a step (restitution, speculative gaps, penetration correction),
 // each with unit, default and reason. docs/tuning.md compares the penetration methods.
+#include <string>
 
 namespace coulomb::engine {
 
@@ -18,9 +19,14 @@ struct PenetrationSettings {
   /// [m] Penetration left alone, so resting contacts keep touching (and keep their manifold
   /// points) instead of being pushed out and falling back every step. Default 0.5 mm.
   double slop = 0.0005;
-  /// Sweeps of the projected Gauss-Seidel on the pseudo-impulse problem (it only has to remove
-  /// most of a small overlap; exactness is not needed). Default 20.
+  /// Registry solver of the pseudo-impulse problem (one unilateral row per contact, no
+  /// friction). Default "pgs": it only has to remove most of a small overlap, and a few sweeps of
+  /// O(contacts) do that; a Newton solver would factorize for an exactness nobody sees.
+  std::string solver = "pgs";
+  /// Iterations of that solver. Default 20.
   int iterations = 20;
+  /// [-] Its target common residual. Default 1e-6, the velocity problem's.
+  double tolerance = 1e-6;
 };
 
 /// How an island's simultaneous impacts are resolved (docs/tuning.md, "Impact laws").

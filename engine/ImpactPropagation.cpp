@@ -138,7 +138,7 @@ void resolvePair(const ContactManifold& m, const ContactSettings& settings, doub
 
 }  // namespace
 
-ImpactPropagationReport propagateImpacts(const Island& island,
+ImpactPropagationReport propagateImpacts(std::span<const std::int32_t> contacts,
                                          const std::vector<ContactManifold>& manifolds,
                                          const ContactSettings& settings, double h,
                                          BodyState& state) {
@@ -147,7 +147,7 @@ ImpactPropagationReport propagateImpacts(const Island& island,
   // once, so an impact travels along a chain ordered like the contacts within one sweep.
   for (int sweep = 0; sweep < settings.maxImpactSweeps; ++sweep) {
     bool any = false;
-    for (const std::int32_t edge : island.constraints) {
+    for (const std::int32_t edge : contacts) {
       const ContactManifold& m = manifolds[edge];
       if (!impacts(state, m, settings, h)) continue;
       resolvePair(m, settings, h, state);
@@ -157,9 +157,9 @@ ImpactPropagationReport propagateImpacts(const Island& island,
     report.sweeps = sweep + 1;
     if (!any) return report;
   }
-  report.converged =
-      std::none_of(island.constraints.begin(), island.constraints.end(),
-                   [&](std::int32_t edge) { return impacts(state, manifolds[edge], settings, h); });
+  report.converged = std::none_of(contacts.begin(), contacts.end(), [&](std::int32_t edge) {
+    return impacts(state, manifolds[edge], settings, h);
+  });
   return report;
 }
 

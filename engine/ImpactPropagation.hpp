@@ -18,6 +18,7 @@
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/ContactManifold.hpp>
 
+#include <span>
 #include <vector>
 
 namespace coulomb::engine {
@@ -30,7 +31,7 @@ struct ImpactPropagationReport {
 
 /// Resolves the impacts of `island` (contact constraints: indices into `manifolds`) in place on
 /// the velocities of `state` (v* before the velocity problem).
-ImpactPropagationReport propagateImpacts(const Island& island,
+ImpactPropagationReport propagateImpacts(std::span<const std::int32_t> contacts,
                                          const std::vector<geometry::ContactManifold>& manifolds,
                                          const ContactSettings& settings, double h,
                                          geometry::BodyState& state);

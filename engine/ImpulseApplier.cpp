@@ -2,9 +2,12 @@
 
 namespace coulomb::engine {
 
-void applyImpulsesTo(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
-                     const Eigen::VectorXd& lambda, const geometry::BodyState& state,
-                     std::vector<Eigen::Vector3d>& linear, std::vector<Eigen::Vector3d>& angular) {
+namespace {
+
+void apply(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
+           const Eigen::VectorXd& lambda, const geometry::BodyState& state,
+           const InverseInertias& inverseInertias, std::vector<Eigen::Vector3d>& linear,
+           std::vector<Eigen::Vector3d>& angular) {
   for (std::size_t k = 0; k < rows.blocks.size(); ++k) {
     const joints::RowBlock& block = rows.blocks[k];
     const double* impulse = lambda.data() + slots[k].offset;
@@ -22,14 +25,25 @@ void applyImpulsesTo(const joints::RowSet& rows, const std::vector<RowBlockSlot>
           l[c] += jac(i, 3 + c) * impulse[i];
         }
       linear[body.index] += state.inverseMasses[body.index] * p;
-      angular[body.index] += state.worldInverseInertias[body.index] * l;
+      angular[body.index] += inverseInertias[body.index] * l;
     }
   }
 }
 
+}  // namespace
+
+void applyImpulsesTo(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
+                     const Eigen::VectorXd& lambda, const geometry::BodyState& state,
+                     std::vector<Eigen::Vector3d>& linear, std::vector<Eigen::Vector3d>& angular) {
+  apply(rows, slots, lambda, state, state.worldInverseInertias, linear, angular);
+}
+
 void applyImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
-                   const Eigen::VectorXd& lambda, geometry::BodyState& state) {
-  applyImpulsesTo(rows, slots, lambda, state, state.linearVelocities, state.angularVelocities);
+                   const Eigen::VectorXd& lambda, geometry::BodyState& state,
+                   const InverseInertias* inverseInertias) {
+  apply(rows, slots, lambda, state,
+        inverseInertias != nullptr ? *inverseInertias : state.worldInverseInertias,
+        state.linearVelocities, state.angularVelocities);
 }
 
 }  // namespace coulomb::engine

@@ -95,9 +95,7 @@ const joints::Stabilization& JointStage::policyOf(const Record& r,
   return r.def.stabilization ? *r.def.stabilization : world;
 }
 
-void JointStage::appendEdges(std::vector<ConstraintEdge>& edges) {
-  firstEdge_ = edges.size();
-  edgeJoints_.clear();
+void JointStage::appendEdges(std::uint8_t owner, const RowContext&, StepEdges& edges) {
   const auto index = [](const geometry::BodyId& id) {
     return id.valid() ? static_cast<std::int32_t>(id.index) : ConstraintEdge::kNoBody;
   };
@@ -105,24 +103,15 @@ void JointStage::appendEdges(std::vector<ConstraintEdge>& edges) {
     Record& r = records_[i];
     r.impulseOnB.setZero();
     if (!r.alive || r.broken) continue;
-    edges.push_back({index(r.def.bodyA), index(r.def.bodyB)});
-    edgeJoints_.push_back(static_cast<std::uint32_t>(i));
+    edges.add(owner, static_cast<std::int32_t>(i), {index(r.def.bodyA), index(r.def.bodyB)});
   }
 }
 
-Island JointStage::contactPart(const Island& island) const {
-  Island out = island;
-  std::erase_if(out.constraints,
-                [&](std::int32_t edge) { return static_cast<std::size_t>(edge) >= firstEdge_; });
-  return out;
-}
-
-joints::RowSet JointStage::emitRows(const Island& island, const geometry::BodyState& state,
-                                    const joints::Stabilization& worldPolicy, double h) {
-  joints::RowSet rows;
-  for (const std::int32_t edge : island.constraints) {
-    if (static_cast<std::size_t>(edge) < firstEdge_) continue;
-    const std::uint32_t slot = edgeJoints_[edge - firstEdge_];
+void JointStage::emitRows(std::span<const std::int32_t> items, const RowContext& context,
+                          joints::RowSet& rows) {
+  const geometry::BodyState& state = context.state;
+  for (const std::int32_t item : items) {
+    const auto slot = static_cast<std::uint32_t>(item);
     Record& r = records_[slot];
     joints::JointBodies bodies;
     bodies.poseA = poseOf(state, r.def.bodyA);
@@ -130,8 +119,8 @@ joints::RowSet JointStage::emitRows(const Island& island, const geometry::BodySt
     bodies.twistA = twistOf(state, r.def.bodyA);
     bodies.twistB = twistOf(state, r.def.bodyB);
     const std::size_t first = rows.blocks.size();
-    const int count =
-        joints::emitJointRows(r.def, bodies, policyOf(r, worldPolicy), h, rows.blocks);
+    const int count = joints::emitJointRows(r.def, bodies, policyOf(r, context.jointPolicy),
+                                            context.h, rows.blocks);
     for (int k = 0; k < count; ++k) {
       joints::RowBlock& block = rows.blocks[first + k];
       block.sourceKey = (static_cast<std::uint64_t>(slot) << 8) | static_cast<std::uint64_t>(k);
@@ -142,13 +131,12 @@ joints::RowSet JointStage::emitRows(const Island& island, const geometry::BodySt
     r.armB = bodies.poseB.rotation * r.def.frameB.anchor;
     r.warmStarts.assign(count, joints::RowVector());
   }
-  return rows;
 }
 
-void JointStage::storeImpulses(const joints::RowSet& rows, std::size_t jointBlocks,
+void JointStage::storeImpulses(const joints::RowSet& rows, joints::BlockRange range,
                                const std::vector<RowBlockSlot>& slots,
-                               const Eigen::VectorXd& lambda) {
-  for (std::size_t k = 0; k < jointBlocks; ++k) {
+                               const Eigen::VectorXd& lambda, const RowContext&) {
+  for (std::size_t k = range.first; k < range.end(); ++k) {
     const joints::RowBlock& block = rows.blocks[k];
     Record& r = records_[block.sourceKey >> 8];
     const joints::RowVector impulse = lambda.segment(slots[k].offset, slots[k].rows);
@@ -157,8 +145,8 @@ void JointStage::storeImpulses(const joints::RowSet& rows, std::size_t jointBloc
   }
 }
 
-void JointStage::stiffenLoadedBodies(geometry::BodyState& state, double h) {
-  stiffened_.clear();
+bool JointStage::stabilizedInverseInertias(const geometry::BodyState& state, double h,
+                                           std::vector<Eigen::Matrix3d>& out) const {
   std::map<std::uint32_t, Eigen::Matrix3d> stiffness;  // by body index: deterministic order
   const auto add = [&](const geometry::BodyId& id, const Eigen::Vector3d& force,
                        const Eigen::Vector3d& anchor) {
@@ -172,29 +160,29 @@ void JointStage::stiffenLoadedBodies(geometry::BodyState& state, double h) {
     add(r.def.bodyA, -r.reaction.force, r.def.frameA.anchor);  // the joint's force on A
     add(r.def.bodyB, r.reaction.force, r.def.frameB.anchor);
   }
+  bool changed = false;
   for (const auto& [body, k] : stiffness) {
     const Eigen::Quaterniond toPrincipal = state.poses[body].rotation * state.principalFrames[body];
     const Eigen::Matrix3d r = toPrincipal.toRotationMatrix();
     const Eigen::Matrix3d inertia = r * state.principalMoments[body].asDiagonal() * r.transpose();
     const Eigen::Matrix3d stable = joints::stabilizingInertia(inertia, k, h);
     if (stable == inertia) continue;
-    state.worldInverseInertias[body] = stable.inverse();
-    stiffened_.push_back(body);
+    if (!changed) out = state.worldInverseInertias;
+    changed = true;
+    out[body] = stable.inverse();
   }
+  return changed;
 }
 
-void JointStage::restoreInertias(geometry::BodyState& state) {
-  for (const std::uint32_t body : stiffened_) state.refreshWorldInertia(body);
-  stiffened_.clear();
-}
-
-void JointStage::correctDrift(geometry::BodyState& state, const joints::Stabilization& worldPolicy,
-                              double h, JointStepReport& report) {
+void JointStage::correctDrift(geometry::BodyState& state, std::span<const std::int32_t> active,
+                              const joints::Stabilization& worldPolicy, double h,
+                              JointStepReport& report) {
   std::vector<const joints::JointDef*> defs;
   std::vector<std::uint32_t> slots;
   joints::PredictedStateSettings settings;  // the tightest of the joints' settings
   bool first = true;
-  for (const std::uint32_t slot : edgeJoints_) {
+  for (const std::int32_t item : active) {
+    const auto slot = static_cast<std::uint32_t>(item);
     const Record& r = records_[slot];
     const joints::Stabilization& policy = policyOf(r, worldPolicy);
     if (policy.method != joints::StabilizationMethod::PredictedState) continue;
@@ -227,8 +215,10 @@ void JointStage::correctDrift(geometry::BodyState& state, const joints::Stabiliz
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
-void JointStage::finishStep(const geometry::BodyState& state, double h, JointStepReport& report) {
-  for (const std::uint32_t slot : edgeJoints_) {
+void JointStage::finishStep(const geometry::BodyState& state, std::span<const std::int32_t> active,
+                            double h, JointStepReport& report) {
+  for (const std::int32_t item : active) {
+    const auto slot = static_cast<std::uint32_t>(item);
     Record& r = records_[slot];
     ++report.joints;
     r.reaction.force = r.impulseOnB.head<3>() / h;

@@ -1,16 +1,18 @@
 #pragma once
-// The joints of a World and their part of the step: island edges, row emission (before the
-// contacts of each island), warm starts, the predicted-state correction, reaction forces,
-// breakage and the drift report. The World calls one method per stage (World.cpp stays the data
-// flow); the joint mathematics lives in joints/ and integrators/PredictedStateCorrection.
+// The joints of a World and their part of the step: a row source (island edges, rows, warm
+// starts), the stabilizing inertias of loaded bodies, the predicted-state correction, reaction
+// forces, breakage and the drift report. The World calls one method per stage (WorldStep.cpp is
+// the data flow); the joint mathematics lives in joints/ and integrators/PredictedStateCorrection.
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
+#include <coulomb/engine/RowSource.hpp>
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Ids.hpp>
 #include <coulomb/joints/JointDef.hpp>
 #include <coulomb/joints/RowSet.hpp>
 
+#include <span>
 #include <vector>
 
 namespace coulomb::engine {
@@ -29,7 +31,7 @@ namespace io {
 struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
 }
 
-class JointStage {
+class JointStage final : public RowSource {
  public:
   /// Adds a joint whose frames are already in the bodies' COM frames and which is valid.
   geometry::JointId create(joints::JointDef def);
@@ -44,30 +46,31 @@ class JointStage {
   /// Live joints with `body` at either end (for removing a body).
   [[nodiscard]] std::vector<geometry::JointId> jointsOf(geometry::BodyId body) const;
 
-  /// Appends one edge per active (live, unbroken) joint after the edges already in `edges`.
-  void appendEdges(std::vector<ConstraintEdge>& edges);
-  /// The island without its joint edges (the contact manifolds, which come first).
-  [[nodiscard]] Island contactPart(const Island& island) const;
-  /// The rows of the island's joints (its constraints at or after the first joint edge), each
-  /// joint's equality block first, warm-started; the World appends the contacts after them.
-  joints::RowSet emitRows(const Island& island, const geometry::BodyState& state,
-                          const joints::Stabilization& worldPolicy, double h);
-  /// The island's solved impulses (the joint blocks are the first blocks of `rows`): kept as next
-  /// step's warm start and accumulated into the reaction.
-  void storeImpulses(const joints::RowSet& rows, std::size_t jointBlocks,
-                     const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda);
-  /// Before the velocity solve: every dynamic body whose joint forces (the last step's reactions)
-  /// would make the explicit step unstable gets the inverse of joints::stabilizingInertia as its
-  /// world inverse inertia, with which the velocity problem is assembled and its impulses applied;
-  /// restoreInertias() puts the true ones back before the predicted-state correction (which
-  /// measured better with the true inertia: SHAKE then stalls on fewer steps).
-  void stiffenLoadedBodies(geometry::BodyState& state, double h);
-  void restoreInertias(geometry::BodyState& state);
-  /// Predicted-state correction of every active joint whose policy is PredictedState.
-  void correctDrift(geometry::BodyState& state, const joints::Stabilization& worldPolicy, double h,
-                    JointStepReport& report);
+  // ---- row source (RowSource.hpp); items are joint slots ---------------------------------------
+  /// One edge per active (live, unbroken) joint; clears the impulses accumulated for reactions.
+  void appendEdges(std::uint8_t owner, const RowContext& context, StepEdges& edges) override;
+  /// Each joint's equality block first, then its limit/motor rows, warm-started.
+  void emitRows(std::span<const std::int32_t> items, const RowContext& context,
+                joints::RowSet& rows) override;
+  /// Kept as next step's warm start and accumulated into the reaction.
+  void storeImpulses(const joints::RowSet& rows, joints::BlockRange range,
+                     const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda,
+                     const RowContext& context) override;
+
+  /// The world inverse inertias the velocity problem is assembled and applied with when some
+  /// dynamic body's joint forces (the last step's reactions) would make the explicit step
+  /// unstable: `state`'s, with those bodies' replaced by the inverse of
+  /// joints::stabilizingInertia (docs/tuning.md, "Heavy loads"). False (and `out` untouched)
+  /// when no body needs it. The body state is not changed: the predicted-state correction and
+  /// the position update keep the true inertia (SHAKE measured better with it).
+  bool stabilizedInverseInertias(const geometry::BodyState& state, double h,
+                                 std::vector<Eigen::Matrix3d>& out) const;
+  /// Predicted-state correction of the `active` joints whose policy is PredictedState.
+  void correctDrift(geometry::BodyState& state, std::span<const std::int32_t> active,
+                    const joints::Stabilization& worldPolicy, double h, JointStepReport& report);
   /// After the position update: reactions [N], breakage, and the drift left by the step.
-  void finishStep(const geometry::BodyState& state, double h, JointStepReport& report);
+  void finishStep(const geometry::BodyState& state, std::span<const std::int32_t> active, double h,
+                  JointStepReport& report);
 
  private:
   friend struct io::SnapshotAccess;
@@ -87,9 +90,6 @@ class JointStage {
 
   std::vector<Record> records_;
   std::vector<std::uint32_t> freeSlots_;
-  std::vector<std::uint32_t> edgeJoints_;  // joint slot of each appended edge
-  std::size_t firstEdge_ = 0;              // index of the first joint edge of this step
-  std::vector<std::uint32_t> stiffened_;   // bodies given a stabilizing inertia this step
 };
 
 }  // namespace coulomb::engine

@@ -1,7 +1,6 @@
 #include <coulomb/engine/ImpulseApplier.hpp>
 #include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/geometry/Quaternion.hpp>
-#include <coulomb/solvers/pgs/PgsSolver.hpp>
 
 #include <algorithm>
 
@@ -54,22 +53,25 @@ solvers::BlockSparseMatrix normalNormalBlock(const VelocityProblemNormals& norma
 }
 
 std::optional<solvers::SolverReport> correctPenetration(
-    const joints::RowSet& contactRows, const std::vector<ContactRowSource>& sources,
-    const PenetrationSettings& settings, double h, geometry::BodyState& state,
+    std::span<const joints::RowBlock> contactBlocks,
+    const std::vector<geometry::ContactManifold>& manifolds, const PenetrationSettings& settings,
+    double h, geometry::BodyState& state, const solvers::ContactSolver& solver,
     ArticulationStage* articulations, const VelocityProblemNormals* velocityProblem) {
   if (settings.method != PenetrationMethod::SplitImpulse) return std::nullopt;
   // Nothing beyond the slop: nothing to build (the common case of a resting stack).
-  auto pseudoVelocityTarget = [&](const ContactRowSource& source) {
-    const double excess = source.depth - settings.slop;
+  auto pseudoVelocityTarget = [&](const joints::RowBlock& block) {
+    const geometry::ContactPoint& point =
+        manifolds[contactManifold(block.sourceKey)].points[contactPoint(block.sourceKey)];
+    const double excess = point.depth - settings.slop;
     return excess > 0.0 ? -settings.beta * excess / h : 0.0;
   };
-  const bool anyPenetration = std::any_of(
-      sources.begin(), sources.end(), [&](const auto& s) { return pseudoVelocityTarget(s) < 0.0; });
+  const bool anyPenetration =
+      std::any_of(contactBlocks.begin(), contactBlocks.end(),
+                  [&](const joints::RowBlock& b) { return pseudoVelocityTarget(b) < 0.0; });
   if (!anyPenetration) return std::nullopt;
   joints::RowSet normals;
-  normals.blocks.reserve(contactRows.blocks.size());
-  for (std::size_t k = 0; k < contactRows.blocks.size(); ++k) {
-    const joints::RowBlock& block = contactRows.blocks[k];
+  normals.blocks.reserve(contactBlocks.size());
+  for (const joints::RowBlock& block : contactBlocks) {
     joints::RowBlock normal;
     normal.kind = joints::RowKind::Unilateral;
     normal.bodyA = block.bodyA;
@@ -77,7 +79,7 @@ std::optional<solvers::SolverReport> correctPenetration(
     normal.jacobianA = block.jacobianA.topRows(1);
     normal.jacobianB = block.jacobianB.topRows(1);
     // Target separation speed for the pseudo-velocity; 0 keeps touching rows non-penetrating.
-    normal.bias = joints::RowVector::Constant(1, pseudoVelocityTarget(sources[k]));
+    normal.bias = joints::RowVector::Constant(1, pseudoVelocityTarget(block));
     normals.blocks.push_back(std::move(normal));
   }
 
@@ -104,9 +106,9 @@ std::optional<solvers::SolverReport> correctPenetration(
 
   solvers::SolverOptions options;
   options.maxIterations = settings.iterations;
-  options.tolerance = 1e-6;
+  options.tolerance = settings.tolerance;
   options.useWarmStart = false;
-  const solvers::SolveOutcome outcome = solvers::PgsSolver().solve(assembled.problem, options);
+  const solvers::SolveOutcome outcome = solver.solve(assembled.problem, options);
 
   std::vector<Eigen::Vector3d> linear(state.size(), Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> angular(state.size(), Eigen::Vector3d::Zero());

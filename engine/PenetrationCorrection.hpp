@@ -6,12 +6,15 @@
 // whose pseudo-velocities M^-1 J_N^T p move the positions by h v_p and are then discarded: the
 // real velocities never see them, so a resting stack gains no energy from being pushed apart.
 #include <coulomb/engine/ArticulationStage.hpp>
-#include <coulomb/engine/ContactRowsEmitter.hpp>
+#include <coulomb/engine/ContactSource.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/joints/RowSet.hpp>
+#include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
 
+#include <optional>
+#include <span>
 #include <vector>
 
 namespace coulomb::engine {
@@ -34,14 +37,16 @@ struct VelocityProblemNormals {
 solvers::BlockSparseMatrix normalNormalBlock(const VelocityProblemNormals& normals);
 
 /// Split impulse: moves the island's dynamic bodies out of penetration (positions and
-/// orientations only), given the contact rows of the step and their sources' depths.
+/// orientations only), given the contact blocks of the step (their sourceKey names the manifold
+/// point whose depth is read). `solver` solves the pseudo problem (PenetrationSettings::solver).
 /// Returns the pseudo-solve's report (status, sweeps), or nullopt when nothing penetrates.
 /// `articulations`: rows on link proxies move their trees' joint positions as well.
 /// `velocityProblem`: the island's velocity problem, whose W_NN is reused when given (else the
 /// normal rows are assembled again).
 std::optional<solvers::SolverReport> correctPenetration(
-    const joints::RowSet& contactRows, const std::vector<ContactRowSource>& sources,
-    const PenetrationSettings& settings, double h, geometry::BodyState& state,
+    std::span<const joints::RowBlock> contactBlocks,
+    const std::vector<geometry::ContactManifold>& manifolds, const PenetrationSettings& settings,
+    double h, geometry::BodyState& state, const solvers::ContactSolver& solver,
     ArticulationStage* articulations = nullptr,
     const VelocityProblemNormals* velocityProblem = nullptr);
 

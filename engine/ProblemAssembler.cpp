@@ -30,11 +30,12 @@ bool carriesUnknowns(const geometry::BodyState& state, const geometry::BodyId& b
 }
 
 /// M_b^-1 J^T for one side of a block: (m^-1 J_lin^T ; I_world^-1 J_ang^T), 6 x k.
-Matrix6k inverseMassTimesJacobianT(const geometry::BodyState& state, std::uint32_t body,
-                                   const joints::RowJacobian& jacobian) {
+Matrix6k inverseMassTimesJacobianT(const geometry::BodyState& state,
+                                   const std::vector<Eigen::Matrix3d>& inverseInertias,
+                                   std::uint32_t body, const joints::RowJacobian& jacobian) {
   Matrix6k out(6, jacobian.rows());
   out.topRows<3>() = state.inverseMasses[body] * jacobian.leftCols<3>().transpose();
-  out.bottomRows<3>() = state.worldInverseInertias[body] * jacobian.rightCols<3>().transpose();
+  out.bottomRows<3>() = inverseInertias[body] * jacobian.rightCols<3>().transpose();
   return out;
 }
 
@@ -114,7 +115,10 @@ class SparseRowsBuilder {
 
 AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
                                             const geometry::BodyState& state,
-                                            const ArticulationStage* articulations) const {
+                                            const ArticulationStage* articulations,
+                                            const InverseInertias* inverseInertias) const {
+  const InverseInertias& inertias =
+      inverseInertias != nullptr ? *inverseInertias : state.worldInverseInertias;
   AssembledProblem out;
   const auto blockCount = static_cast<int>(rows.blocks.size());
   out.slots.resize(blockCount);
@@ -144,7 +148,7 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
            jac.rightCols<3>() * state.angularVelocities[body.index];
       if (!carriesUnknowns(state, body)) continue;
       touches.push_back({body.index, k, sideB});
-      minvJt[2 * k + (sideB ? 1 : 0)] = inverseMassTimesJacobianT(state, body.index, jac);
+      minvJt[2 * k + (sideB ? 1 : 0)] = inverseMassTimesJacobianT(state, inertias, body.index, jac);
     }
     q.segment(out.slots[k].offset, out.slots[k].rows) = u;
   }

@@ -35,6 +35,10 @@ struct AssembledProblem {
   int degreesOfFreedom = 0;         // 6 x (dynamic bodies touched), the m of nu = 3n/m
 };
 
+/// World inverse inertias, one per body slot: the velocity problem's may differ from the bodies'
+/// own (JointStage::stabilizedInverseInertias).
+using InverseInertias = std::vector<Eigen::Matrix3d>;
+
 class ProblemAssembler {
  public:
   explicit ProblemAssembler(AssemblySettings settings = {}) : settings_(settings) {}
@@ -42,9 +46,12 @@ class ProblemAssembler {
   /// The rows' bodies index `state` by BodyId::index; an invalid id is the world. Warm starts
   /// are taken from each block's `warmStart` when all blocks have one of the right size.
   /// `articulations`: rows on link proxies get the trees' part of W (ArticulationStage.hpp).
+  /// `inverseInertias`: the world inverse inertias to use (nullptr: state.worldInverseInertias).
   [[nodiscard]] AssembledProblem assemble(const joints::RowSet& rows,
                                           const geometry::BodyState& state,
-                                          const ArticulationStage* articulations = nullptr) const;
+                                          const ArticulationStage* articulations = nullptr,
+                                          const InverseInertias* inverseInertias = nullptr) const;
+  [[nodiscard]] const AssemblySettings& settings() const { return settings_; }
 
  private:
   AssemblySettings settings_;

@@ -3,25 +3,35 @@
 // iterations, time and the common residual; plus what the collision stage found and skipped.
 #include <coulomb/geometry/CollisionPipeline.hpp>
 #include <coulomb/geometry/Ids.hpp>
+#include <coulomb/solvers/SolvePlan.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace coulomb::engine {
 
 struct IslandReport {
-  std::int32_t island = 0;      // island id of this step (ordered by smallest body index)
-  std::size_t bodies = 0;       // dynamic bodies in the island
-  std::size_t contacts = 0;     // contact points (row blocks)
-  int unknowns = 0;             // scalar unknowns of its problem
-  int degreesOfFreedom = 0;     // m of nu = 3n/m
-  std::string reason;           // why this solver (SolverChooser)
-  solvers::SolverReport solve;  // report of the attempt whose answer was applied
+  std::int32_t island = 0;   // island id of this step (ordered by smallest body index)
+  std::size_t bodies = 0;    // dynamic bodies in the island
+  std::size_t contacts = 0;  // contact points (row blocks)
+  int unknowns = 0;          // scalar unknowns of its problem
+  int degreesOfFreedom = 0;  // m of nu = 3n/m
+  solvers::SolvePlan plan;   // the attempts run for it, the chooser's rule and features
+  // Converged when the applied answer is within the policy's tolerance (solveWithFallback);
+  // else the status of the attempt whose answer was applied.
+  solvers::SolverStatus status = solvers::SolverStatus::NotApplicable;
+  solvers::SolverReport solve;  // report of the attempt whose answer was applied (own status)
   std::vector<solvers::SolverReport> attempts;  // every attempt, in order (fallbacks = size - 1)
-  double penetrationSeconds = 0.0;              // [s] split-impulse correction
+  std::optional<solvers::SolverReport> penetration;  // split impulse's pseudo-solve, if it ran
+  double penetrationSeconds = 0.0;                   // [s] split-impulse correction
+
+  /// Why this plan (formatted on each call: the step itself formats nothing).
+  [[nodiscard]] std::string reason() const { return plan.reason(); }
+  [[nodiscard]] bool converged() const { return status == solvers::SolverStatus::Converged; }
 };
 
 /// What the joints did in one step (all islands together).
@@ -32,7 +42,7 @@ struct JointStepReport {
   int correctionIterations = 0;  // predicted-state correction solves
   double correctionError = 0.0;  // [m or rad] largest predicted error left by the correction
   bool correctionConverged = true;
-  double correctionSeconds = 0.0;             // [s] wall clock of the correction
+  double correctionSeconds = 0.0;         // [s] wall clock of the correction
   std::vector<geometry::JointId> broken;  // joints that broke in this step
 };
 
@@ -41,7 +51,7 @@ struct QuarantineEvent {
   geometry::BodyId body;                  // invalid for an articulation
   geometry::ArticulationId articulation;  // invalid for a free body
   std::string name;                       // the body's or the articulation's name
-  std::string reason;                     // e.g. "non-finite velocity after the velocity prediction"
+  std::string reason;  // e.g. "non-finite velocity after the velocity prediction"
 };
 
 struct StepReport {
@@ -54,9 +64,9 @@ struct StepReport {
   geometry::CollisionStats collision;                         // pairs, manifolds, points
   std::vector<geometry::CollisionFailure> collisionFailures;  // pairs skipped this step
   std::vector<IslandReport> islands;
-  JointStepReport joints;  // drift, predicted-state correction, breakage
+  JointStepReport joints;                    // drift, predicted-state correction, breakage
   std::vector<QuarantineEvent> quarantined;  // bodies and trees isolated in this step
-  double seconds = 0.0;  // [s] wall clock of the whole step
+  double seconds = 0.0;                      // [s] wall clock of the whole step
 
   [[nodiscard]] std::size_t fallbacks() const {
     std::size_t n = 0;

@@ -1,25 +1,28 @@
 #pragma once
 // The World owns the body state, the colliders and the settings, and advances them in time.
-// step() reads as the data flow of ARCHITECTURE.md section 2 with the stages that exist so far.
+// step() (WorldStep.cpp) reads as the data flow of docs/architecture.md, "The step": each stage
+// reads and writes the step's StepData.
 #include <coulomb/engine/ArticulationStage.hpp>
 #include <coulomb/engine/BodyDesc.hpp>
-#include <coulomb/engine/ContactRowsEmitter.hpp>
+#include <coulomb/engine/ContactSource.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/engine/JointStage.hpp>
-#include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/Quarantine.hpp>
 #include <coulomb/engine/Sleep.hpp>
 #include <coulomb/engine/SolverPromotion.hpp>
+#include <coulomb/engine/StepData.hpp>
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Collider.hpp>
 #include <coulomb/geometry/CollisionPipeline.hpp>
+#include <coulomb/solvers/SolveWithFallback.hpp>
 #include <coulomb/solvers/SolverRegistry.hpp>
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -104,12 +107,16 @@ class World {
   }
   /// The solver registry islands are solved with; add entries to use your own solvers by name.
   [[nodiscard]] solvers::SolverRegistry& solverRegistry() { return registry_; }
-  /// Solver for the island of this body ("" = WorldSettings::solver). When an island holds
-  /// bodies with different overrides, the one of its smallest body index wins.
-  void setSolverOverride(geometry::BodyId id, const std::string& solver);
-  void setSolver(const std::string& solver);  // WorldSettings::solver, validated
-  /// WorldSettings::promoteFallbacks; off also drops the promotions already recorded.
-  void setPromoteFallbacks(bool on);
+  /// Solvers for the island of this body (nullopt = WorldSettings::solve.choice). When an island
+  /// holds bodies with different overrides, the one of its smallest body index wins. Throws
+  /// CoulombError for an unknown solver.
+  void setSolverOverride(geometry::BodyId id, std::optional<solvers::SolverChoice> choice);
+  /// WorldSettings::solve.choice, validated against solverRegistry().
+  void setSolver(const solvers::SolverChoice& choice);
+  /// The whole solve policy (choice, options, chooser thresholds, promotion rule), validated
+  /// once here; takes effect in the next step. Turning promotion off drops the promotions
+  /// already recorded.
+  void setSolvePolicy(const solvers::SolvePolicy& policy);
 
   /// Validates `desc` (joints/JointDef.hpp; frames in each body's reference frame) and adds the
   /// joint. Throws CoulombError naming the joint and the problem (stale body, non-unit axis, NaN
@@ -140,15 +147,16 @@ class World {
   friend struct io::SnapshotAccess;  // engine/io/Snapshot.cpp: saves and restores the state
   /// Quarantines every dynamic body whose state is bad after `stage` (engine/Quarantine.hpp).
   void guard(const char* stage, StepReport& report);
-  /// The per-island stages of step(): rows, assembly, solver plan, solve, impulses, warm starts.
-  IslandReport solveIsland(const Island& island, double h, joints::RowSet& rows,
-                           std::vector<ContactRowSource>& sources, VelocityProblemNormals& normals);
-  [[nodiscard]] std::vector<ConstraintEdge> contactEdges() const;
-  [[nodiscard]] std::vector<ConstraintEdge> constraintEdges();  // contacts, then joints
-  [[nodiscard]] std::vector<std::uint8_t> dynamicMask() const;
-  void correctPenetrations(double h, std::vector<joints::RowSet>& rows,
-                           std::vector<std::vector<ContactRowSource>>& sources,
-                           const std::vector<VelocityProblemNormals>& normals, StepReport& report);
+  // The stages of step() (WorldStep.cpp), each reading and writing `step_`.
+  void detectContacts(double h);
+  void buildIslands();
+  void emitRows(IslandWork& island);
+  void solveIsland(IslandWork& island);
+  void applyImpulses(IslandWork& island);
+  void correctPenetrations();
+  [[nodiscard]] IslandReport islandReport(const IslandWork& island) const;
+  [[nodiscard]] RowContext rowContext();
+  [[nodiscard]] RowSource& rowSource(RowOwner owner);
   std::size_t slotOf(geometry::BodyId id) const;  // throws for a stale id
 
   WorldSettings settings_;
@@ -159,16 +167,18 @@ class World {
   std::vector<geometry::SpatialInertia> masses_;  // per slot: mass, COM in the reference frame
   std::vector<geometry::Collider> colliders_;
   std::uint32_t colliderCounter_ = 0;
-  std::vector<std::string> solverOverrides_;  // per slot; "" = settings_.solver
-  SolverPromotion promotion_;                 // per slot: a fallback to run first next step
+  std::vector<std::optional<solvers::SolverChoice>> solverOverrides_;  // per slot
+  SolverPromotion promotion_;  // per slot: a fallback to run first next step
   geometry::CollisionPipeline collision_;
   IslandBuilder islandBuilder_;
   Sleep sleep_;
-  ProblemAssembler assembler_;
+  ContactSource contactRows_;
   JointStage joints_;
   ArticulationStage articulations_;
   Quarantine quarantine_;
   solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
+  solvers::SolverInstances solvers_;  // each registry solver created once, reused every step
+  StepData step_;                     // this step's data; kept for its capacity
   ProblemObserver problemObserver_;
   double time_ = 0.0;
   std::uint64_t stepCount_ = 0;

@@ -16,10 +16,14 @@ std::optional<std::string> WorldSettings::validate() const {
   } else if (!std::isfinite(unitQuaternionTolerance) || unitQuaternionTolerance < 0.0) {
     out << "unit quaternion tolerance must be finite and >= 0 (got " << unitQuaternionTolerance
         << ")";
-  } else if (solver.empty()) {
-    out << "solver must be \"auto\" or a solver name (see `coulomb solvers`)";
-  } else if (auto bad = solvers::validateOptions(solverOptions)) {
-    out << "solver options: " << *bad;
+  } else if (auto bad = solve.validate(nullptr)) {
+    out << *bad;
+  } else if (assembly.denseRowLimit < 0) {
+    out << "assembly dense row limit must be >= 0 (got " << assembly.denseRowLimit << ")";
+  } else if (contact.penetration.iterations < 1 || !(contact.penetration.tolerance > 0.0)) {
+    out << "penetration iterations must be >= 1 and tolerance > 0";
+  } else if (contact.penetration.solver.empty()) {
+    out << "penetration solver must name a solver (see `coulomb solvers`)";
   } else if (!std::isfinite(contact.restitutionThreshold) || contact.restitutionThreshold < 0.0) {
     out << "restitution threshold must be finite and >= 0 m/s (got " << contact.restitutionThreshold
         << ")";

@@ -1,11 +1,12 @@
 #pragma once
 // Every tunable of a World, with its unit, default and the reason for the default.
 #include <coulomb/engine/ContactSettings.hpp>
+#include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/QuarantineSettings.hpp>
 #include <coulomb/engine/Sleep.hpp>
 #include <coulomb/geometry/CollisionPipeline.hpp>
 #include <coulomb/joints/Stabilization.hpp>
-#include <coulomb/solvers/SolverOptions.hpp>
+#include <coulomb/solvers/SolvePolicy.hpp>
 
 #include <Eigen/Core>
 
@@ -29,25 +30,13 @@ struct WorldSettings {
   /// normalised. Larger deviations are an error (a silent renormalisation hides typos).
   double unitQuaternionTolerance = 1e-6;
 
-  /// Contact solver for every island: "auto" (SolverChooser picks per island and says why) or a
-  /// registry name (`coulomb solvers`). A body's own `solver` overrides it for its island.
-  std::string solver = "auto";
-  /// Common solver options per island. Default tolerance 1e-6 on the common relative residual
-  /// (far below what changes a trajectory visibly, and reached in a few warm-started sweeps on
-  /// stacks); at most 200 iterations per attempt; no time limit. 200 is ac_newton's and
-  /// fb_newton's own cap, so it only shortens Gauss-Seidel (pgs, bgs: 10000 sweeps otherwise)
-  /// and staggered (1000 outer steps): a cold-started stack (first step of a resting pyramid)
-  /// needs thousands of sweeps to reach 1e-6, which cost seconds per step on 200+ boxes. Capped
-  /// attempts say "max_iterations" and the plan's fallbacks continue from their best iterate;
-  /// the warm start carries the rest into the next step (docs/benchmarks.md, "Contact step
-  /// performance"). 0 = each solver's own default.
-  solvers::SolverOptions solverOptions = defaultSimulationSolverOptions();
-  /// With "auto": when a fallback had to finish an island's step (pgs stalled, ac_newton
-  /// converged), it runs first in that island's next step, solved to 1/100 of the tolerance
-  /// (engine/SolverPromotion.hpp: the warm start after a fallback carries a one-off correction
-  /// that makes pgs and Newton alternate otherwise). Default on: a 55-box pyramid over 10 000
-  /// steps needs 17 Newton solves instead of ~2 300 (docs/benchmarks.md, "Long runs").
-  bool promoteFallbacks = true;
+  /// How every island is solved (solvers/SolvePolicy.hpp, docs/tuning.md "The solve policy"):
+  /// which solvers (automatic by default, or a preferred solver, or an exact chain of attempts),
+  /// the options every attempt shares, the chooser's thresholds and the promotion rule. A body's
+  /// own BodyDesc::solver overrides the choice for its island.
+  solvers::SolvePolicy solve;
+  /// When an island's W is dense, block-sparse or kept factored (engine/ProblemAssembler.hpp).
+  AssemblySettings assembly;
   /// Restitution, speculative gaps and penetration correction (docs/tuning.md).
   ContactSettings contact;
   /// Speculative margin and contact-matching distances of the collision layer.
@@ -60,14 +49,8 @@ struct WorldSettings {
   /// with figures). A joint's own JointDef::stabilization overrides it.
   joints::Stabilization jointStabilization;
 
-  static solvers::SolverOptions defaultSimulationSolverOptions() {
-    solvers::SolverOptions options;
-    options.tolerance = 1e-6;
-    options.maxIterations = 200;
-    return options;
-  }
-
-  /// nullopt if every value is usable, else a message naming the first bad one.
+  /// nullopt if every value is usable, else a message naming the first bad one (solver names
+  /// are checked against the World's registry by the World).
   [[nodiscard]] std::optional<std::string> validate() const;
 };
 

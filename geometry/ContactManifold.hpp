@@ -21,7 +21,7 @@ struct ContactPoint {
   Eigen::Vector2d tangentImpulse = Eigen::Vector2d::Zero();  // along tangent1, tangent2 [N s]
   bool warmStarted = false;  // true when the impulses were carried over from the last step
   // The normal row of the last solve at this point, carried over with the impulses (elastic
-  // turning, engine/ContactRowsEmitter.cpp and docs/tuning.md): its normal (zero: none), the
+  // turning, engine/ContactSource.cpp and docs/tuning.md): its normal (zero: none), the
   // moments r_A x n and r_B x n of the normal about the body centres of that step, and the normal
   // velocity n . (v_B - v_A) the solve left there (exact, -bias, where it pushed; the approach
   // before the solve where it did not, which other points' impulses may have changed).
@@ -29,6 +29,9 @@ struct ContactPoint {
   Eigen::Vector3d solvedMomentA = Eigen::Vector3d::Zero();
   Eigen::Vector3d solvedMomentB = Eigen::Vector3d::Zero();
   double solvedNormalVelocity = 0.0;
+  // [m/s] u_N = n . (v_B - v_A) at the point with v*, before this step's solve (written by the
+  // contact row emission, read when the impulses are stored; not carried between steps).
+  double approachVelocity = 0.0;
 };
 
 struct ContactManifold {

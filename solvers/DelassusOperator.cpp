@@ -124,28 +124,34 @@ BlockSparseMatrix DelassusOperator::toBlockSparse(const std::vector<int>& blockS
   if (storage_ == Storage::BodySpace && body_->blockSizes() == blockSizes)
     return body_->toBlockSparse();
   const int n = rows();
-  Eigen::MatrixXd dense;
-  if (storage_ == Storage::Dense) {
-    dense = *dense_;
-  } else {  // block-sparse with another partition, or matrix-free: gather columns
-    dense.resize(n, n);
-    for (int j = 0; j < n; ++j) dense.col(j) = column(j);
+  Eigen::MatrixXd gathered;  // block-sparse with another partition, or matrix-free
+  if (storage_ != Storage::Dense) {
+    gathered.resize(n, n);
+    for (int j = 0; j < n; ++j) gathered.col(j) = column(j);
   }
-  std::vector<int> offset(blockSizes.size() + 1, 0);
-  for (size_t b = 0; b < blockSizes.size(); ++b) offset[b + 1] = offset[b] + blockSizes[b];
+  const Eigen::MatrixXd& dense = storage_ == Storage::Dense ? *dense_ : gathered;
+  const auto nb = static_cast<int>(blockSizes.size());
+  std::vector<int> offset(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) offset[b + 1] = offset[b] + blockSizes[b];
   if (offset.back() != n || dense.cols() != n)
     throw std::invalid_argument("toBlockSparse: partition does not match the operator size");
-  std::vector<MatrixBlockEntry> entries;
-  for (size_t i = 0; i < blockSizes.size(); ++i)
-    for (size_t j = 0; j < blockSizes.size(); ++j) {
+  // Straight into block-CSR (columns ascending per row; zero off-diagonal blocks skipped).
+  std::vector<int> rowStart(nb + 1, 0), columns;
+  std::vector<double> values;
+  columns.reserve(static_cast<std::size_t>(nb) * nb);
+  values.reserve(static_cast<std::size_t>(n) * n);
+  for (int i = 0; i < nb; ++i) {
+    for (int j = 0; j < nb; ++j) {
       const auto blk = dense.block(offset[i], offset[j], blockSizes[i], blockSizes[j]);
       if (i != j && (blk.array() == 0.0).all()) continue;
-      MatrixBlockEntry e{static_cast<int>(i), static_cast<int>(j), {}};
+      columns.push_back(j);
       for (int a = 0; a < blockSizes[i]; ++a)
-        for (int c = 0; c < blockSizes[j]; ++c) e.values.push_back(blk(a, c));
-      entries.push_back(std::move(e));
+        for (int c = 0; c < blockSizes[j]; ++c) values.push_back(blk(a, c));
     }
-  return BlockSparseMatrix(blockSizes, std::move(entries));
+    rowStart[i + 1] = static_cast<int>(columns.size());
+  }
+  return BlockSparseMatrix::fromBlockCsr(blockSizes, std::move(rowStart), std::move(columns),
+                                         std::move(values));
 }
 
 }  // namespace coulomb::solvers

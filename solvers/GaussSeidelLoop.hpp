@@ -10,7 +10,6 @@
 #include <Eigen/Core>
 
 #include <cstdint>
-#include <functional>
 
 namespace coulomb::solvers {
 
@@ -26,8 +25,24 @@ struct GaussSeidelSettings {
 };
 
 // Proposes a new r_c for contact block b given its local free velocity q~ (r holds r_c on entry).
-using ContactUpdate =
-    std::function<void(int block, const Eigen::Vector3d& qTilde, Eigen::Vector3d& r)>;
+// A non-owning reference to the solver's local rule (called once per contact per sweep: no
+// std::function, no allocation); the rule must outlive the call of runGaussSeidel.
+class ContactUpdate {
+ public:
+  template <class Rule>
+  explicit ContactUpdate(Rule& rule)
+      : rule_(&rule),
+        call_([](void* r, int block, const Eigen::Vector3d& qTilde, Eigen::Vector3d& out) {
+          (*static_cast<Rule*>(r))(block, qTilde, out);
+        }) {}
+  void operator()(int block, const Eigen::Vector3d& qTilde, Eigen::Vector3d& r) const {
+    call_(rule_, block, qTilde, r);
+  }
+
+ private:
+  void* rule_;
+  void (*call_)(void*, int, const Eigen::Vector3d&, Eigen::Vector3d&);
+};
 
 void runGaussSeidel(const PreparedProblem& problem, const SolveContext& context,
                     const GaussSeidelSettings& settings, const ContactUpdate& update,

@@ -1,9 +1,11 @@
 #pragma once
 // Which solvers an island gets, in order, and why (ARCHITECTURE.md section 4, SOLVERS.md section
-// 9). SolverChooser fills it (automatically or from a named solver or chain); solveWithFallback
-// runs it.
+// 9). SolverChooser fills it from the world's SolvePolicy (SolvePolicy.hpp); solveWithFallback
+// runs it. A plan holds numbers and enums only: its reason is formatted when asked (reason()),
+// never on the step's hot path.
 #include <coulomb/solvers/SolverOptions.hpp>
 
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -29,22 +31,44 @@ struct ProblemFeatures {
   bool factored = false;     // W is body-space (BodySpaceDelassus): a sweep costs O(contacts)
 };
 
+/// One attempt of a plan: a registry solver with its own limits. A zero field takes the plan's
+/// common option (SolverOptions), so {"pgs"} runs pgs with the world's tolerance and cap.
+struct SolveAttempt {
+  std::string solver;      // registry name (`coulomb solvers`)
+  int maxIterations = 0;   // [iterations] 0 = SolverOptions::maxIterations
+  int stallWindow = 0;     // [iterations] 0 = SolverOptions::stallWindow
+  double tolerance = 0.0;  // [-] 0 = SolverOptions::tolerance (the plan's target)
+  friend bool operator==(const SolveAttempt&, const SolveAttempt&) = default;
+};
+
+/// Which rule of the policy made the plan (SolverChooser::automatic, SOLVERS.md section 9).
+enum class PlanRule : std::uint8_t {
+  ZeroIsExact,        // every q_N >= 0, no equality or bounded rows: r = 0 is exact
+  OneContact,         // one contact: bgs solves it exactly in one sweep
+  JointRowsOnly,      // no cone: Newton solves the linear system plus bounds in 1-3 steps
+  LargeIsland,        // above ChooserSettings::newtonMaxUnknowns: Gauss-Seidel only
+  MassRatio,          // kappa above ChooserSettings::newtonMassRatio: Newton first
+  PileByNu,           // nu above ChooserSettings::pileNu: pgs first, Newton as the fallback
+  PileBySize,         // dofs unknown and many contacts: as PileByNu
+  FactoredTry,        // body-space W: a short bgs try, then Newton
+  FewActiveContacts,  // a short bgs try, then Newton
+  WellPosed,          // Newton first
+  Preferred,          // the policy names a solver first, the automatic fallbacks follow
+  Exactly,            // the policy's own chain, nothing else
+};
+const char* planRuleName(PlanRule rule);
+
 struct SolvePlan {
-  std::vector<std::string> solvers;  // registry names: the primary first, then the fallbacks
-  std::string reason;                // human-readable: why this primary (for the StepReport)
-  SolverOptions options;             // common options for every attempt
-  // Per-attempt iteration caps, parallel to `solvers` (missing or 0 = options.maxIterations), e.g.
-  // a short Gauss-Seidel try before Newton on tiny problems.
-  std::vector<int> iterationCaps;
-  // Per-attempt stall windows (SolverOptions::stallWindow), parallel to `solvers` (missing or 0 =
-  // options.stallWindow), e.g. a pgs that gives way to Newton as soon as it stagnates.
-  std::vector<int> stallWindows;
-  // Per-attempt tolerances, parallel to `solvers` (missing or 0 = options.tolerance), e.g. a
-  // tighter one for a solver that must iterate from a start just below the plan's tolerance
-  // (engine/SolverPromotion). An attempt that ends above its own tolerance but within the plan's
-  // counts as converged.
-  std::vector<double> tolerances;
-  ProblemFeatures features;  // what the choice was based on (auto plans)
+  std::vector<SolveAttempt> attempts;  // the primary first, then the fallbacks
+  SolverOptions options;               // common options for every attempt (the plan's target)
+  PlanRule rule = PlanRule::WellPosed;
+  ProblemFeatures features;  // what the choice was based on
+  bool promoted = false;     // attempts[0] is a promoted fallback (SolvePolicy.hpp)
+
+  /// Human-readable: the rule, the features and the attempts (formatted on each call).
+  [[nodiscard]] std::string reason() const;
+  /// The attempt's options: the plan's with the attempt's non-zero limits.
+  [[nodiscard]] SolverOptions optionsFor(const SolveAttempt& attempt) const;
 };
 
 /// What the chooser may know about an island besides its problem.

@@ -6,6 +6,18 @@
 #include <chrono>
 
 namespace coulomb::solvers {
+namespace {
+
+// The plan is done once the best answer is within its tolerance and was not a failure (an
+// attempt aimed tighter than the plan may stop at its cap there: the plan still has its answer).
+bool withinPlan(const SolverReport& best, const SolvePlan& plan) {
+  const bool usable = best.status == SolverStatus::Converged ||
+                      best.status == SolverStatus::MaxIterations ||
+                      best.status == SolverStatus::Stalled;
+  return usable && best.residual <= plan.options.tolerance;
+}
+
+}  // namespace
 
 int PlanOutcome::iterations() const {
   int total = 0;
@@ -13,48 +25,46 @@ int PlanOutcome::iterations() const {
   return total;
 }
 
+const ContactSolver* SolverInstances::get(const std::string& name, const SolverRegistry& registry) {
+  for (const auto& [known, solver] : made_)
+    if (known == name) return solver.get();
+  std::unique_ptr<ContactSolver> made = registry.create(name);
+  if (!made) return nullptr;
+  made_.emplace_back(name, std::move(made));
+  return made_.back().second.get();
+}
+
 PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
                               const SolverRegistry& registry) {
+  SolverInstances instances;
+  return solveWithFallback(problem, plan, registry, instances);
+}
+
+PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
+                              const SolverRegistry& registry, SolverInstances& instances) {
   const auto started = std::chrono::steady_clock::now();
   PlanOutcome out;
   bool haveBest = false;
-  std::string tried;
-  for (size_t attempt = 0; attempt < plan.solvers.size(); ++attempt) {
-    const std::string& name = plan.solvers[attempt];
-    if (haveBest && out.best.report.converged()) break;
-    const std::unique_ptr<ContactSolver> solver = registry.create(name);
+  for (const SolveAttempt& attempt : plan.attempts) {
+    if (haveBest && withinPlan(out.best.report, plan)) break;
+    const ContactSolver* solver = instances.get(attempt.solver, registry);
     if (!solver) {
       SolverReport missing;
-      missing.solver = name;
+      missing.solver = attempt.solver;
       missing.status = SolverStatus::NotApplicable;
-      missing.message = "no solver named '" + name + "' in the registry";
+      missing.message = "no solver named '" + attempt.solver + "' in the registry";
       out.attempts.push_back(missing);
       continue;
     }
     // The time limit is for the whole plan: each attempt gets what is left.
-    SolverOptions options = plan.options;
+    SolverOptions options = plan.optionsFor(attempt);
     const double used =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (used >= options.timeLimitSeconds && haveBest) break;
     options.timeLimitSeconds = std::max(options.timeLimitSeconds - used, 1e-6);
-    if (attempt < plan.iterationCaps.size() && plan.iterationCaps[attempt] > 0)
-      options.maxIterations = plan.iterationCaps[attempt];
-    if (attempt < plan.stallWindows.size() && plan.stallWindows[attempt] > 0)
-      options.stallWindow = plan.stallWindows[attempt];
-    if (attempt < plan.tolerances.size() && plan.tolerances[attempt] > 0)
-      options.tolerance = plan.tolerances[attempt];
     SolveOutcome outcome = haveBest ? solver->solve(problem, options, out.best.impulses)
                                     : solver->solve(problem, options);
-    if (!outcome.report.converged() && options.tolerance < plan.options.tolerance &&
-        outcome.report.residual <= plan.options.tolerance &&
-        (outcome.report.status == SolverStatus::MaxIterations ||
-         outcome.report.status == SolverStatus::Stalled)) {
-      outcome.report.status =
-          SolverStatus::Converged;  // short of its own target, within the plan's
-      outcome.report.note("stopped above its tighter tolerance, within the plan's");
-    }
     out.attempts.push_back(outcome.report);
-    tried += (tried.empty() ? "" : " -> ") + name + " (" + statusName(outcome.report.status) + ")";
     if (outcome.report.status == SolverStatus::InvalidProblem) {
       out.best = std::move(outcome);  // the problem itself is wrong: no solver will do better
       haveBest = true;
@@ -76,10 +86,9 @@ PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& pl
     out.best.report.status = SolverStatus::NotApplicable;
     out.best.report.note("no solver of the plan could run; r = 0 returned");
   }
+  out.status = haveBest && withinPlan(out.best.report, plan) ? SolverStatus::Converged
+                                                             : out.best.report.status;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  if (!plan.reason.empty()) out.best.report.note("plan: " + plan.reason);
-  if (out.attempts.size() > 1)
-    out.best.report.note(std::to_string(out.attempts.size() - 1) + " fallback(s): " + tried);
   return out;
 }
 

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <sstream>
 
 namespace coulomb::solvers {
 namespace {
@@ -27,26 +25,6 @@ bool normalDiagonal(const ContactProblem& problem, const std::vector<int>& offse
   if (k < 0) return false;
   value = sparse->blockValues(k)[0];
   return true;
-}
-
-std::string describe(const ProblemFeatures& f) {
-  std::ostringstream s;
-  s << f.contacts << " contacts (" << f.activeContacts << " active)";
-  const int rows = f.equalityRows + f.boundedRows + f.unilateralRows;
-  if (rows > 0) s << ", " << rows << " scalar rows (" << f.equalityRows << " equality)";
-  if (!std::isnan(f.nu)) s << ", nu = " << std::round(f.nu * 100) / 100;
-  if (!std::isnan(f.massRatio)) s << ", kappa = " << static_cast<float>(f.massRatio);
-  s << ", " << f.unknowns << " unknowns";
-  return s.str();
-}
-
-std::vector<std::string> splitChain(const std::string& text) {
-  std::vector<std::string> names;
-  std::stringstream s(text);
-  std::string name;
-  while (std::getline(s, name, ','))
-    if (!name.empty()) names.push_back(name);
-  return names;
 }
 
 }  // namespace
@@ -102,104 +80,72 @@ ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
   return f;
 }
 
-SolvePlan SolverChooser::choose(const ContactProblem& problem, const IslandFeatures& island,
-                                const std::string& requested, const SolverOptions& options) const {
-  const ProblemFeatures features = measureProblemFeatures(problem, island);
-  SolvePlan plan = automatic(features);
+void SolverChooser::choose(const ContactProblem& problem, const IslandFeatures& island,
+                           const SolverChoice& choice, const SolverOptions& options,
+                           SolvePlan& plan) const {
+  plan.features = measureProblemFeatures(problem, island);
   plan.options = options;
-  plan.features = features;
-  if (requested == "auto" || requested.empty()) {
-    plan.reason = "auto: " + plan.reason;
-    return plan;
+  plan.promoted = false;
+  plan.attempts.clear();
+  if (choice.mode == ChoiceMode::Exactly) {  // the user's own chain, with the user's limits
+    plan.attempts.insert(plan.attempts.end(), choice.attempts.begin(), choice.attempts.end());
+    plan.rule = PlanRule::Exactly;
+    return;
   }
-  plan.iterationCaps.clear();  // a user's choice runs with the user's options
-  plan.stallWindows.clear();
-  if (requested.find(',') != std::string::npos) {  // the user's own chain
-    plan.solvers = splitChain(requested);
-    plan.reason = "requested chain " + requested;
-    return plan;
+  automatic(plan.features, plan);
+  if (choice.mode == ChoiceMode::Automatic) return;
+  // Preferred: the named attempts first (with their own limits only), then the automatic plan's
+  // other solvers as fallbacks with the common options.
+  const std::size_t automaticCount = plan.attempts.size();
+  for (std::size_t k = 0; k < automaticCount; ++k) {
+    bool named = false;
+    for (const SolveAttempt& a : choice.attempts)
+      named = named || a.solver == plan.attempts[k].solver;
+    plan.attempts[k] = named ? SolveAttempt{} : SolveAttempt{plan.attempts[k].solver};
   }
-  if (requested.back() == '!') {  // one solver, no fallback
-    plan.solvers = {requested.substr(0, requested.size() - 1)};
-    plan.reason = "requested " + plan.solvers.front() + " alone";
-    return plan;
-  }
-  // A named solver first, then the automatic plan's solvers as fallbacks.
-  std::vector<std::string> chain{requested};
-  for (const std::string& name : plan.solvers)
-    if (name != requested) chain.push_back(name);
-  plan.solvers = chain;
-  plan.reason = "requested " + requested + " (fallbacks of the automatic plan)";
-  return plan;
+  std::erase_if(plan.attempts, [](const SolveAttempt& a) { return a.solver.empty(); });
+  plan.attempts.insert(plan.attempts.begin(), choice.attempts.begin(), choice.attempts.end());
+  plan.rule = PlanRule::Preferred;
 }
 
-SolvePlan SolverChooser::automatic(const ProblemFeatures& f) const {
-  SolvePlan plan;
-  const std::string what = describe(f);
+void SolverChooser::automatic(const ProblemFeatures& f, SolvePlan& plan) const {
+  auto set = [&plan](PlanRule rule, std::initializer_list<SolveAttempt> attempts) {
+    plan.rule = rule;
+    plan.attempts.assign(attempts);
+  };
   const bool newtonSized = f.unknowns <= settings_.newtonMaxUnknowns;
   const int scalarRows = f.equalityRows + f.boundedRows + f.unilateralRows;
   if (f.unknowns == 0 || f.zeroIsExact) {
     // SOLVERS.md section 9, first row: every contact separates or rests without approaching, so
     // r = 0 is exact; the solver returns at its start residual without iterating.
-    plan.solvers = {"bgs"};
-    plan.reason = "all q_N >= 0 and no equality or bounded rows: r = 0 is exact (" + what + ")";
-    return plan;
+    return set(PlanRule::ZeroIsExact, {{"bgs"}});
   }
-  if (f.contacts == 1 && scalarRows == 0) {
-    plan.solvers = {"bgs", "ac_newton"};
-    plan.reason = "one contact: bgs solves it exactly in one sweep (Algorithm 4.1)";
-    return plan;
-  }
+  if (f.contacts == 1 && scalarRows == 0)  // Algorithm 4.1: exact in one sweep
+    return set(PlanRule::OneContact, {{"bgs"}, {"ac_newton"}});
   if (f.contacts == 0 && newtonSized) {
     // Joint rows only (equalities, limits, motors, joint friction): with no cone the problem is a
     // linear system plus a few bounds, which Newton solves in 1-3 steps, while Gauss-Seidel
     // converges like a chain's slowest mode (a 10-link chain needed > 50 bgs sweeps per step).
-    plan.solvers = {"ac_newton", "bgs"};
-    plan.reason = "joint rows only (" + what + "): ac_newton, Gauss-Seidel converges slowly";
-    return plan;
+    return set(PlanRule::JointRowsOnly, {{"ac_newton"}, {"bgs"}});
   }
-  if (!newtonSized) {
-    plan.solvers = {"bgs", "pgs"};
-    plan.reason = "large island (" + what + "): bgs, no Newton beyond " +
-                  std::to_string(settings_.newtonMaxUnknowns) + " unknowns";
-    return plan;
-  }
-  const bool heavyRatio = !std::isnan(f.massRatio) && f.massRatio > settings_.newtonMassRatio;
-  if (heavyRatio) {
-    plan.solvers = {"ac_newton", "fb_newton", "bgs"};
-    plan.reason = "mass ratio above " +
-                  std::to_string(static_cast<int>(settings_.newtonMassRatio)) + " (" + what +
-                  "): Newton, Gauss-Seidel stagnates";
-    return plan;
-  }
+  if (!newtonSized) return set(PlanRule::LargeIsland, {{"bgs"}, {"pgs"}});
+  if (!std::isnan(f.massRatio) && f.massRatio > settings_.newtonMassRatio)
+    return set(PlanRule::MassRatio, {{"ac_newton"}, {"fb_newton"}, {"bgs"}});
   const bool pileByNu = !std::isnan(f.nu) && f.nu > settings_.pileNu;
   const bool pileBySize = std::isnan(f.nu) && f.contacts >= settings_.pileContactsWithoutDofs;
   if (pileByNu || pileBySize) {
     // Gauss-Seidel first on piles and towers (Kaplas: pgs 2.7x faster than ac_newton); Newton as
     // the fallback for the stacks where Gauss-Seidel stalls (BoxesStack).
-    plan.solvers = {"pgs", "ac_newton", "bgs"};
-    plan.stallWindows = {settings_.pileStallSweeps};
-    plan.reason = std::string(pileByNu ? "pile or tower by nu" : "large island, dofs unknown") +
-                  " (" + what + "): pgs, then ac_newton";
-    return plan;
+    return set(pileByNu ? PlanRule::PileByNu : PlanRule::PileBySize,
+               {{"pgs", 0, settings_.pileStallSweeps}, {"ac_newton"}, {"bgs"}});
   }
-  if (f.factored && settings_.factoredTrySweeps > 0) {
-    plan.solvers = {"bgs", "ac_newton", "fb_newton"};
-    plan.iterationCaps = {settings_.factoredTrySweeps};
-    plan.reason = "body-space W (" + what + "): " + std::to_string(settings_.factoredTrySweeps) +
-                  " bgs sweeps, then ac_newton";
-    return plan;
-  }
-  if (f.activeContacts <= settings_.smallActiveContacts) {
-    plan.solvers = {"bgs", "ac_newton", "fb_newton"};
-    plan.iterationCaps = {settings_.smallTrySweeps};
-    plan.reason = "few active contacts (" + what +
-                  "): " + std::to_string(settings_.smallTrySweeps) + " bgs sweeps, then ac_newton";
-    return plan;
-  }
-  plan.solvers = {"ac_newton", "bgs", "fb_newton"};
-  plan.reason = "well-posed enough for Newton (" + what + "): ac_newton";
-  return plan;
+  if (f.factored && settings_.factoredTrySweeps > 0)
+    return set(PlanRule::FactoredTry,
+               {{"bgs", settings_.factoredTrySweeps}, {"ac_newton"}, {"fb_newton"}});
+  if (f.activeContacts <= settings_.smallActiveContacts)
+    return set(PlanRule::FewActiveContacts,
+               {{"bgs", settings_.smallTrySweeps}, {"ac_newton"}, {"fb_newton"}});
+  set(PlanRule::WellPosed, {{"ac_newton"}, {"bgs"}, {"fb_newton"}});
 }
 
 }  // namespace coulomb::solvers

@@ -19,6 +19,56 @@ std::uint64_t fnv1a(std::span<const std::uint8_t> bytes) {
   return h;
 }
 
+template <class Ar>
+void transferChoice(Ar& ar, solvers::SolverChoice& choice) {
+  ioEnum(ar, choice.mode, solvers::ChoiceMode::Exactly);
+  const std::size_t n = ar.length(choice.attempts.size(), 1, "a solver choice");
+  if constexpr (Ar::kLoading) choice.attempts.resize(n);
+  for (solvers::SolveAttempt& a : choice.attempts) {
+    io(ar, a.solver);
+    io(ar, a.maxIterations);
+    io(ar, a.stallWindow);
+    io(ar, a.tolerance);
+  }
+}
+
+template <class Ar>
+void transferPolicy(Ar& ar, solvers::SolvePolicy& p) {
+  transferChoice(ar, p.choice);
+  io(ar, p.options.tolerance);
+  io(ar, p.options.maxIterations);
+  io(ar, p.options.timeLimitSeconds);
+  io(ar, p.options.useWarmStart);
+  io(ar, p.options.recordHistory);
+  io(ar, p.options.stallWindow);
+  solvers::ChooserSettings& c = p.chooser;
+  io(ar, c.pileNu);
+  io(ar, c.newtonMaxUnknowns);
+  io(ar, c.pileContactsWithoutDofs);
+  io(ar, c.smallActiveContacts);
+  io(ar, c.smallTrySweeps);
+  io(ar, c.factoredTrySweeps);
+  io(ar, c.newtonMassRatio);
+  io(ar, c.pileStallSweeps);
+  io(ar, p.promotion.enabled);
+  io(ar, p.promotion.nearMiss);
+  io(ar, p.promotion.iterationCap);
+  io(ar, p.promotion.toleranceScale);
+  io(ar, p.promotion.minUnknowns);
+}
+
+template <class Ar>
+void transferOverrides(Ar& ar, std::vector<std::optional<solvers::SolverChoice>>& overrides) {
+  const std::size_t n = ar.length(overrides.size(), 1, "the solver overrides");
+  if constexpr (Ar::kLoading) overrides.assign(n, std::nullopt);
+  for (std::optional<solvers::SolverChoice>& o : overrides) {
+    bool present = o.has_value();
+    io(ar, present);
+    if (present && !o) o.emplace();
+    if (present) transferChoice(ar, *o);
+  }
+}
+
 /// Every field of the settings, in declaration order (WorldSettings.hpp and the structs it holds).
 template <class Ar>
 void transferSettings(Ar& ar, WorldSettings& s) {
@@ -26,19 +76,17 @@ void transferSettings(Ar& ar, WorldSettings& s) {
   io(ar, s.timeStep);
   io(ar, s.defaultDensity);
   io(ar, s.unitQuaternionTolerance);
-  io(ar, s.solver);
-  io(ar, s.solverOptions.tolerance);
-  io(ar, s.solverOptions.maxIterations);
-  io(ar, s.solverOptions.timeLimitSeconds);
-  io(ar, s.solverOptions.useWarmStart);
-  io(ar, s.solverOptions.recordHistory);
-  io(ar, s.promoteFallbacks);
+  transferPolicy(ar, s.solve);
+  io(ar, s.assembly.denseRowLimit);
+  io(ar, s.assembly.bodySpace);
   io(ar, s.contact.restitutionThreshold);
   io(ar, s.contact.speculativeContacts);
   ioEnum(ar, s.contact.penetration.method, PenetrationMethod::None);
   io(ar, s.contact.penetration.beta);
   io(ar, s.contact.penetration.slop);
+  io(ar, s.contact.penetration.solver);
   io(ar, s.contact.penetration.iterations);
+  io(ar, s.contact.penetration.tolerance);
   ioEnum(ar, s.contact.impactLaw, ImpactLaw::Propagating);
   io(ar, s.contact.touchingTolerance);
   io(ar, s.contact.maxImpactSweeps);
@@ -169,6 +217,8 @@ struct SnapshotAccess {
       WorldSettings settings = w.settings_;
       transferSettings(ar, settings);
       if (auto bad = settings.validate()) ar.fail("corrupt settings: " + *bad);
+      if (auto bad = settings.solve.validate(&w.registry_))
+        ar.fail("settings this world cannot use: " + *bad);
       const auto& c = w.collision_.settings();
       if (settings.collision.speculativeMargin != c.speculativeMargin ||
           settings.collision.speculativeSweep != c.speculativeSweep ||
@@ -181,7 +231,7 @@ struct SnapshotAccess {
     } else {
       transferSettings(ar, w.settings_);
     }
-    io(ar, w.solverOverrides_);
+    transferOverrides(ar, w.solverOverrides_);
     if constexpr (Ar::kLoading)
       if (w.solverOverrides_.size() != w.state_.size()) ar.fail("corrupt: solver overrides");
     io(ar, w.promotion_.names());

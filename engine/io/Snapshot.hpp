@@ -32,8 +32,9 @@
 namespace coulomb::engine::io {
 
 // 2: collision.speculativeSweep; 3: contact.elasticTurning and the contact points' solved rows;
-// 4: promoteFallbacks and the solver promotions (engine/SolverPromotion).
-inline constexpr std::uint32_t kSnapshotVersion = 4;
+// 4: promoteFallbacks and the solver promotions (engine/SolverPromotion); 5: the typed solve
+// policy (WorldSettings::solve, per-body solver choices), assembly and penetration solver.
+inline constexpr std::uint32_t kSnapshotVersion = 5;
 
 /// The snapshot of `world` as bytes (header included).
 [[nodiscard]] std::vector<std::uint8_t> saveSnapshot(const World& world);

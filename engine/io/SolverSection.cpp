@@ -2,7 +2,7 @@
 #include <coulomb/solvers/SolverRegistry.hpp>
 
 #include <algorithm>
-#include <sstream>
+#include <optional>
 
 namespace coulomb::engine::io {
 namespace {
@@ -40,7 +40,7 @@ ImpactLaw parseImpactLaw(const JsonNode& node) {
 }
 
 void parsePenetration(const JsonNode& node, PenetrationSettings& settings) {
-  node.allowOnly({"method", "beta", "slop", "iterations"});
+  node.allowOnly({"method", "beta", "slop", "iterations", "solver", "tolerance"});
   if (node.has("method")) settings.method = parsePenetrationMethod(node.child("method"));
   if (node.has("beta")) {
     settings.beta = node.child("beta").number();
@@ -52,30 +52,33 @@ void parsePenetration(const JsonNode& node, PenetrationSettings& settings) {
     if (sweeps < 1 || sweeps > 100000) node.child("iterations").fail("must be in [1, 100000]");
     settings.iterations = static_cast<int>(sweeps);
   }
+  if (node.has("solver")) {
+    const std::string name = node.child("solver").string();
+    const std::vector<std::string> known = solvers::SolverRegistry::builtIn().names();
+    if (std::find(known.begin(), known.end(), name) == known.end())
+      node.child("solver").fail("unknown solver '" + name + "' (see `coulomb solvers`)");
+    settings.solver = name;
+  }
+  if (node.has("tolerance")) settings.tolerance = node.child("tolerance").positiveNumber();
 }
 
 }  // namespace
 
-std::string parseSolverRequest(const JsonNode& node) {
+solvers::SolverChoice parseSolverRequest(const JsonNode& node) {
   const std::string request = node.string();
-  if (request == "auto") return request;
+  std::string error;
+  std::optional<solvers::SolverChoice> choice = solvers::parseSolverChoice(request, error);
+  if (!choice) node.fail(error);
   const std::vector<std::string> known = solvers::SolverRegistry::builtIn().names();
-  std::string chain = request;
-  if (!chain.empty() && chain.back() == '!') chain.pop_back();
-  std::stringstream names(chain);
-  std::string name;
-  bool any = false;
-  while (std::getline(names, name, ',')) {
-    any = true;
-    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
-    std::string message = "unknown solver '" + name + "'";
+  for (const solvers::SolveAttempt& attempt : choice->attempts) {
+    if (std::find(known.begin(), known.end(), attempt.solver) != known.end()) continue;
+    std::string message = "unknown solver '" + attempt.solver + "'";
     std::vector<std::string> candidates = known;
     candidates.emplace_back("auto");
-    if (auto s = nearestName(name, candidates)) message += "; did you mean '" + *s + "'?";
+    if (auto s = nearestName(attempt.solver, candidates)) message += "; did you mean '" + *s + "'?";
     node.fail(message + " (see `coulomb solvers`)");
   }
-  if (!any) node.fail("expected \"auto\", a solver name, \"NAME!\" or a chain \"A,B\"");
-  return request;
+  return *choice;
 }
 
 void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
@@ -83,8 +86,8 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
                   "restitution_threshold", "speculative_contacts", "speculative_margin",
                   "speculative_sweep", "penetration", "impact_law", "touching_tolerance",
                   "max_impact_sweeps", "elastic_turning", "promote_fallbacks"});
-  solvers::SolverOptions& options = settings.solverOptions;
-  if (node.has("name")) settings.solver = parseSolverRequest(node.child("name"));
+  solvers::SolverOptions& options = settings.solve.options;
+  if (node.has("name")) settings.solve.choice = parseSolverRequest(node.child("name"));
   if (node.has("tolerance")) options.tolerance = node.child("tolerance").positiveNumber();
   if (node.has("max_iterations")) {
     const std::uint64_t iterations = node.child("max_iterations").unsignedInteger();
@@ -94,7 +97,7 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
   if (node.has("time_limit")) options.timeLimitSeconds = node.child("time_limit").positiveNumber();
   if (node.has("warm_start")) options.useWarmStart = parseBool(node.child("warm_start"));
   if (node.has("promote_fallbacks"))
-    settings.promoteFallbacks = parseBool(node.child("promote_fallbacks"));
+    settings.solve.promotion.enabled = parseBool(node.child("promote_fallbacks"));
   ContactSettings& contact = settings.contact;
   if (node.has("restitution_threshold"))
     contact.restitutionThreshold = nonNegative(node.child("restitution_threshold"));

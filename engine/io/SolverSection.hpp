@@ -13,9 +13,9 @@ namespace coulomb::engine::io {
 /// the JSON path, e.g. "scene.json: solver.penetration.beta: must be in [0, 1] (got 2)".
 void parseSolverSection(const JsonNode& node, WorldSettings& settings);
 
-/// Checks a solver request ("auto", a built-in solver name, "NAME!" or a chain "A,B,C") at `node`,
-/// suggesting the nearest built-in name for a typo; returns it unchanged.
-std::string parseSolverRequest(const JsonNode& node);
+/// Parses a solver request ("auto", a built-in solver name, "NAME!" or a chain "A,B,C") at
+/// `node` into the typed choice, suggesting the nearest built-in name for a typo.
+solvers::SolverChoice parseSolverRequest(const JsonNode& node);
 
 /// The top-level "sleep" section: enabled, linear_speed [m/s], angular_speed [rad/s], time [s].
 void parseSleepSection(const JsonNode& node, SleepSettings& sleep);

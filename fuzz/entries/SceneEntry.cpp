@@ -36,7 +36,7 @@ std::string sceneEntry(const std::uint8_t* data, std::size_t size) {
     // A folder that does not exist: relative mesh and URDF paths of the input resolve to nothing.
     engine::io::Scene scene = engine::io::parseScene(text, "fuzz.json", "/nonexistent-fuzz");
     // Bounded solves: an input asking for 10^9 iterations is valid, not a finding.
-    solvers::SolverOptions& options = scene.settings.solverOptions;
+    solvers::SolverOptions& options = scene.settings.solve.options;
     if (options.maxIterations <= 0 || options.maxIterations > kMaxIterations)
       options.maxIterations = kMaxIterations;
     engine::World world = engine::io::buildWorld(scene);

@@ -44,7 +44,8 @@ solvers::SolveOutcome solveOnce(const solvers::ContactProblem& problem, const st
     if (!named) throw std::runtime_error("unknown solver '" + solver + "'");
     return named->solve(problem, options);
   }
-  const solvers::SolvePlan plan = solvers::SolverChooser().choose(problem, {}, "auto", options);
+  const solvers::SolvePlan plan =
+      solvers::SolverChooser().choose(problem, {}, solvers::SolverChoice::automatic(), options);
   const solvers::PlanOutcome planned = solvers::solveWithFallback(problem, plan, registry);
   solvers::SolveOutcome outcome = planned.best;
   outcome.report.solver = "auto";

@@ -14,7 +14,7 @@ BallChain buildBallChain(int links, double timeStep, const std::string& solver,
                          joints::StabilizationMethod policy) {
   engine::WorldSettings settings;
   settings.timeStep = timeStep;
-  settings.solver = solver;
+  settings.solve.choice = coulomb::solvers::solverChoice(solver);
   settings.jointStabilization.method = policy;
   BallChain chain{engine::World(settings), {}};
   geometry::BodyId parent;

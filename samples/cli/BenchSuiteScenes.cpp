@@ -56,8 +56,8 @@ BenchRecord measureScene(const std::string& part, const engine::io::Scene& scene
   ComparisonRow row;
   for (int r = 0; r < o.repeats; ++r) {
     std::ostringstream label;
-    label << scene.name << " " << scene.settings.solver;
-    if (part == "sweep") label << " max_iter " << scene.settings.solverOptions.maxIterations;
+    label << scene.name << " " << scene.settings.solve.choice.text();
+    if (part == "sweep") label << " max_iter " << scene.settings.solve.options.maxIterations;
     label << " repeat " << r + 1 << "/" << o.repeats;
     progress.next(label.str());
     row = runForComparison(scene, o.timeCap);  // deterministic: only the time differs
@@ -152,7 +152,7 @@ void runNuScenesPart(const SuiteOptions& o, std::vector<BenchRecord>& out) {
             const double nu = 3.0 * static_cast<double>(island.contacts) / island.degreesOfFreedom;
             Bin& bin = bins[std::lround(nu * 100)];
             ++bin.solves;
-            bin.unconverged += island.solve.status != solvers::SolverStatus::Converged;
+            bin.unconverged += !island.converged();
             bin.iterations += island.solve.iterations;
             bin.iterationsMax = std::max<double>(bin.iterationsMax, island.solve.iterations);
             bin.residualMax = std::max(bin.residualMax, island.solve.residual);

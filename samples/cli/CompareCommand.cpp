@@ -33,8 +33,8 @@ void compare(const CompareOptions& options) {
   const engine::io::Scene& first = scenes.front();
   std::cout << "compare " << first.name << " (" << first.source << "): " << first.bodies.size()
             << " bodies, " << first.steps << " steps of " << first.settings.timeStep
-            << " s; tolerance " << first.settings.solverOptions.tolerance << ", max iterations "
-            << first.settings.solverOptions.maxIterations << " (0 = solver default)\n";
+            << " s; tolerance " << first.settings.solve.options.tolerance << ", max iterations "
+            << first.settings.solve.options.maxIterations << " (0 = solver default)\n";
   printComparisonHeader(std::cout);
   for (const engine::io::Scene& scene : scenes)
     printComparisonRow(std::cout, runForComparison(scene, options.timeCap));

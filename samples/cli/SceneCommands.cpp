@@ -110,7 +110,8 @@ void run(const RunOptions& options) {
 
   std::cout << "scene " << scene.name << " (" << scene.source << "): " << world.bodyCount()
             << (world.bodyCount() == 1 ? " body, " : " bodies, ") << metrics.steps() << " steps of "
-            << scene.settings.timeStep << " s, solver " << scene.settings.solver << "\n"
+            << scene.settings.timeStep << " s, solver " << scene.settings.solve.choice.text()
+            << "\n"
             << "  simulated " << world.time() << " s in " << stepSeconds << " s ("
             << meanStepSeconds * 1e6 << " us/step mean, " << metrics.medianStepMilliseconds() * 1e3
             << " us/step median)\n"

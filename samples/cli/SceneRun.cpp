@@ -32,17 +32,21 @@ engine::io::Scene loadScene(const std::string& nameOrPath, const SceneOverrides&
   }
   if (overrides.steps) scene.steps = *overrides.steps;
   if (overrides.solver) {
-    scene.settings.solver = *overrides.solver;
-    for (engine::BodyDesc& body : scene.bodies) body.solver.clear();
+    std::string error;
+    const std::optional<solvers::SolverChoice> choice =
+        solvers::parseSolverChoice(*overrides.solver, error);
+    if (!choice) throw CommandError("--solver: " + error);
+    scene.settings.solve.choice = *choice;
+    for (engine::BodyDesc& body : scene.bodies) body.solver.reset();
   }
   if (overrides.maxIterations) {
     if (*overrides.maxIterations < 0) throw CommandError("--max-iter must be >= 0");
-    scene.settings.solverOptions.maxIterations = *overrides.maxIterations;
+    scene.settings.solve.options.maxIterations = *overrides.maxIterations;
   }
   if (overrides.tolerance) {
     if (!std::isfinite(*overrides.tolerance) || *overrides.tolerance <= 0.0)
       throw CommandError("--tol must be finite and > 0");
-    scene.settings.solverOptions.tolerance = *overrides.tolerance;
+    scene.settings.solve.options.tolerance = *overrides.tolerance;
   }
   if (overrides.friction) {
     if (!std::isfinite(*overrides.friction) || *overrides.friction < 0.0)
@@ -107,7 +111,7 @@ void RunMetrics::observe(const engine::World& world, const engine::StepReport& r
       tally.residualMax = std::max(tally.residualMax, island.solve.residual);
     }
     tally.fallbacks += island.attempts.empty() ? 0 : island.attempts.size() - 1;
-    if (!island.solve.converged()) ++tally.unconverged;
+    if (!island.converged()) ++tally.unconverged;
     tally.solveSeconds += island.solve.seconds;
   }
   std::uint64_t points = 0;

@@ -102,7 +102,13 @@ void runSolve(const SolveArgs& a) {
     if (registry.find(name)) {
       out = registry.create(name)->solve(problem, options);
     } else {  // a plan: the chooser's primary and fallbacks (SOLVERS.md section 9)
-      const solvers::SolvePlan chosen = solvers::SolverChooser().choose(problem, {}, name, options);
+      std::string error;
+      const std::optional<solvers::SolverChoice> choice = solvers::parseSolverChoice(name, error);
+      if (!choice) throw CommandError("--solver: " + error);
+      if (auto unknown = solvers::unknownSolver(*choice, registry))
+        throw CommandError("unknown solver '" + *unknown + "' (see `coulomb solvers`)");
+      const solvers::SolvePlan chosen =
+          solvers::SolverChooser().choose(problem, {}, *choice, options);
       const solvers::PlanOutcome planned = solvers::solveWithFallback(problem, chosen, registry);
       out = planned.best;
       out.report.seconds = planned.seconds;
@@ -110,7 +116,7 @@ void runSolve(const SolveArgs& a) {
       std::string tried;
       for (const solvers::SolverReport& attempt : planned.attempts)
         tried += (tried.empty() ? "" : ",") + jsonString(attempt.solver);
-      planFields = ",\"attempts\":[" + tried + "],\"reason\":" + jsonString(chosen.reason);
+      planFields = ",\"attempts\":[" + tried + "],\"reason\":" + jsonString(chosen.reason());
     }
     const solvers::SolverReport& r = out.report;
     std::cout << "{\"problem\":" << jsonString(problem.name)

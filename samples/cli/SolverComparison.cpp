@@ -35,8 +35,8 @@ ComparisonRow runForComparison(const engine::io::Scene& scene, double timeCapSec
   engine::World world = buildWorldFor(scene);
   RunMetrics metrics(world);
   runSteps(world, scene.steps, scene.settings.timeStep, metrics, {}, timeCapSeconds);
-  ComparisonRow row = comparisonRowOf(metrics, scene.name, scene.settings.solver,
-                                      scene.settings.solverOptions.maxIterations);
+  ComparisonRow row = comparisonRowOf(metrics, scene.name, scene.settings.solve.choice.text(),
+                                      scene.settings.solve.options.maxIterations);
   std::ostringstream note;
   if (metrics.diverged()) note << "DIVERGED at t=" << world.time() << " s";
   if (metrics.capped())

@@ -36,7 +36,7 @@ void RunRecorder::finish(CaseRun& run) const {
 
 engine::World buildCaseWorld(const std::string& scene, const CaseOptions& options) {
   engine::io::Scene loaded = scenes::loadBuiltinScene(scene);
-  loaded.settings.solver = options.solver;
+  loaded.settings.solve.choice = coulomb::solvers::solverChoice(options.solver);
   return engine::io::buildWorld(loaded);
 }
 

@@ -39,8 +39,8 @@ bool near(double value, double target, double tolerance) {
 /// law to ~1e-9 (SCENES.md "discrete floor"), which the world's default 1e-6 would blur.
 engine::World buildFrictionWorld(const std::string& scene, const CaseOptions& options) {
   engine::io::Scene loaded = scenes::loadBuiltinScene(scene);
-  loaded.settings.solver = options.solver;
-  loaded.settings.solverOptions.tolerance = kCaseTolerance;
+  loaded.settings.solve.choice = coulomb::solvers::solverChoice(options.solver);
+  loaded.settings.solve.options.tolerance = kCaseTolerance;
   return engine::io::buildWorld(loaded);
 }
 
@@ -260,7 +260,7 @@ MeasuredCase painleveRod(const std::string& scene, double refPn, double refPt,
   for (std::size_t k = 1; k <= run.steps && run.finite(); ++k) {
     const engine::StepReport& report = run.recorder.step(run.world);
     for (const engine::IslandReport& island : report.islands)
-      solverOk = solverOk && island.solve.converged();
+      solverOk = solverOk && island.converged();
     if (k == 1) {
       Eigen::Vector3d tangential = Eigen::Vector3d::Zero();
       for (const geometry::ContactManifold& m : run.world.contacts())

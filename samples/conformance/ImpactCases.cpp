@@ -27,7 +27,7 @@ std::string format(const char* pattern, auto... values) {
 
 engine::World buildWorldWith(const std::string& scene, const CaseOptions& options, ImpactLaw law) {
   engine::io::Scene loaded = scenes::loadBuiltinScene(scene);
-  loaded.settings.solver = options.solver;
+  loaded.settings.solve.choice = coulomb::solvers::solverChoice(options.solver);
   loaded.settings.contact.impactLaw = law;
   return engine::io::buildWorld(loaded);
 }

@@ -73,7 +73,7 @@ void setSceneFriction(engine::io::Scene& scene, double mu) {
 DoubleLoopRun runDoubleLoop(double mu, const CaseOptions& options, std::size_t steps) {
   engine::io::Scene scene = scenes::loadBuiltinScene("double_loop");
   setSceneFriction(scene, mu);
-  scene.settings.solver = options.solver;
+  scene.settings.solve.choice = coulomb::solvers::solverChoice(options.solver);
   engine::World world = engine::io::buildWorld(scene);
   const geometry::BodyId ball = world.findBody("ball");
   std::optional<solvers::ContactProblem> captured;

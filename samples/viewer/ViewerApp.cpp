@@ -93,10 +93,10 @@ std::vector<std::string> solverChoices(engine::World& world) {
 
 // Every island solved by `name`: the world's solver, and no body keeps an override.
 void applySolver(engine::World& world, const std::string& name) {
-  world.setSolver(name);
+  world.setSolver(coulomb::solvers::solverChoice(name));
   for (std::size_t i = 0; i < world.state().size(); ++i) {
     const geometry::BodyId id = world.idAt(i);
-    if (id.valid()) world.setSolverOverride(id, "");
+    if (id.valid()) world.setSolverOverride(id, std::nullopt);
   }
 }
 

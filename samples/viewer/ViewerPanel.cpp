@@ -67,10 +67,10 @@ void islandTable(const engine::StepReport& report) {
     ImGui::Text("%zu", island.contacts);
     ImGui::TableNextColumn();
     ImGui::Text("%s%s", island.solve.solver.c_str(), island.attempts.size() > 1 ? " *" : "");
-    if (ImGui::IsItemHovered() && !island.reason.empty())
-      ImGui::SetTooltip("%s (%zu attempts)", island.reason.c_str(), island.attempts.size());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s (%zu attempts)", island.reason().c_str(), island.attempts.size());
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(solvers::statusName(island.solve.status));
+    ImGui::TextUnformatted(solvers::statusName(island.status));
     ImGui::TableNextColumn();
     ImGui::Text("%d", island.solve.iterations);
     ImGui::TableNextColumn();

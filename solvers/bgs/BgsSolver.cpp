@@ -12,7 +12,7 @@ void BgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
   for (int b = 0; b < p.blockCount(); ++b)
     if (p.blocks[b].isContact()) local[b] = LocalContactData::from(p.contactBlock(b));
   const LocalSolverSettings settings = options_.local;
-  ContactUpdate update = [&](int b, const Eigen::Vector3d& qt, Eigen::Vector3d& rc) {
+  auto rule = [&](int b, const Eigen::Vector3d& qt, Eigen::Vector3d& rc) {
     rc = solveLocalContact(local[b], qt, p.blocks[b].mu, rc, settings).r;
   };
   GaussSeidelSettings gs;
@@ -22,7 +22,7 @@ void BgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
   gs.shuffle = options_.shuffle;
   gs.seed = options_.seed;
   gs.residualInterval = options_.residualInterval;
-  runGaussSeidel(p, context, gs, update, r, report);
+  runGaussSeidel(p, context, gs, ContactUpdate(rule), r, report);
 }
 
 }  // namespace coulomb::solvers

@@ -43,7 +43,7 @@ void PgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
       l.rhoT = inverseTangentSpectralRadius(l.W);
     }
   }
-  ContactUpdate update = [&](int b, const Eigen::Vector3d& qt, Eigen::Vector3d& rc) {
+  auto rule = [&](int b, const Eigen::Vector3d& qt, Eigen::Vector3d& rc) {
     const Local& l = local[b];
     const double mu = p.blocks[b].mu;
     Eigen::Vector3d u = l.W * rc + qt;
@@ -68,7 +68,7 @@ void PgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
   gs.seed = options_.seed;
   gs.stallWindow = options_.stallWindow;
   gs.residualInterval = options_.residualInterval;
-  runGaussSeidel(p, context, gs, update, r, report);
+  runGaussSeidel(p, context, gs, ContactUpdate(rule), r, report);
 }
 
 }  // namespace coulomb::solvers

@@ -29,7 +29,7 @@ engine::World cradle(engine::ImpactLaw law, const std::string& solver = "auto",
   engine::io::Scene scene = scenes::loadBuiltinScene("newton_cradle");
   scene.settings.contact.impactLaw = law;
   scene.settings.contact.touchingTolerance = touchingTolerance;
-  scene.settings.solver = solver;
+  scene.settings.solve.choice = coulomb::solvers::solverChoice(solver);
   return engine::io::buildWorld(scene);
 }
 

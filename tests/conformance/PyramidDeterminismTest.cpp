@@ -21,7 +21,7 @@ constexpr int kSteps = 200;
 
 std::vector<std::uint64_t> hashesOfARun(const std::string& solver) {
   engine::io::Scene scene = scenes::loadBuiltinScene("pyramid_10");
-  scene.settings.solver = solver;
+  scene.settings.solve.choice = coulomb::solvers::solverChoice(solver);
   engine::World world = engine::io::buildWorld(scene);
   std::vector<std::uint64_t> hashes;
   for (int k = 0; k < kSteps; ++k) {

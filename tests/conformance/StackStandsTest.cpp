@@ -50,8 +50,8 @@ StandingRun runStanding(const std::string& sceneName, const std::string& solver)
   // attempts are capped at 300 sweeps so that a step it cannot finish (the 20-box tower: load
   // travels through 20 boxes, SOLVERS.md section 5) falls back quickly instead of sweeping 10^4
   // times; the figures printed below say how often that happened.
-  scene.settings.solver = solver;
-  if (solver != "ac_newton") scene.settings.solverOptions.maxIterations = 300;
+  scene.settings.solve.choice = coulomb::solvers::solverChoice(solver);
+  if (solver != "ac_newton") scene.settings.solve.options.maxIterations = 300;
   engine::World world = engine::io::buildWorld(scene);
   std::vector<Eigen::Vector3d> start;
   for (std::size_t i = 0; i < world.state().size(); ++i)

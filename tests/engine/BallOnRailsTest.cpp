@@ -32,7 +32,7 @@ struct Rig {
 std::unique_ptr<Rig> makeRig(double mu, double piece, const Eigen::Vector3d& v,
                              const Eigen::Vector3d& w) {
   WorldSettings settings;
-  settings.solver = "ac_newton";
+  settings.solve.choice = coulomb::solvers::solverChoice("ac_newton");
   auto rig = std::make_unique<Rig>(Rig{World(settings), {}});
   BodyDesc rails;
   rails.motionType = geometry::MotionType::Static;

@@ -37,7 +37,7 @@ struct Rig {
 // or not spinning (mu = 0).
 std::unique_ptr<Rig> makeRing(double mu, double v0, bool elasticTurning) {
   WorldSettings settings;
-  settings.solver = "ac_newton";
+  settings.solve.choice = coulomb::solvers::solverChoice("ac_newton");
   settings.gravity = Eigen::Vector3d::Zero();
   settings.contact.elasticTurning = elasticTurning;
   auto rig = std::make_unique<Rig>(Rig{World(settings), {}});

@@ -15,7 +15,7 @@ engine::WorldSettings settings(engine::ImpactLaw law, int maxSweeps = 100) {
   s.gravity.setZero();
   s.contact.impactLaw = law;
   s.contact.maxImpactSweeps = maxSweeps;
-  s.solverOptions.tolerance = 1e-12;  // the simultaneous law's answer to round-off
+  s.solve.options.tolerance = 1e-12;  // the simultaneous law's answer to round-off
   return s;
 }
 

@@ -32,9 +32,9 @@ std::string errorOf(const std::string& solverSection, const std::string& bodyExt
 TEST(SceneSolverSection, EmptySectionKeepsEveryDefault) {
   const engine::io::Scene scene = parse("{}");
   const engine::WorldSettings defaults;
-  EXPECT_EQ(scene.settings.solver, "auto");
-  EXPECT_EQ(scene.settings.solverOptions.tolerance, defaults.solverOptions.tolerance);
-  EXPECT_EQ(scene.settings.solverOptions.maxIterations, defaults.solverOptions.maxIterations);
+  EXPECT_EQ(scene.settings.solve.choice.text(), "auto");
+  EXPECT_EQ(scene.settings.solve.options.tolerance, defaults.solve.options.tolerance);
+  EXPECT_EQ(scene.settings.solve.options.maxIterations, defaults.solve.options.maxIterations);
   EXPECT_EQ(scene.settings.contact.penetration.slop, defaults.contact.penetration.slop);
   EXPECT_EQ(scene.settings.collision.speculativeMargin, defaults.collision.speculativeMargin);
 }
@@ -44,16 +44,17 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
       "name": "pgs", "tolerance": 1e-4, "max_iterations": 50, "time_limit": 0.5,
       "warm_start": false, "restitution_threshold": 0.1, "speculative_contacts": false,
       "speculative_margin": 0.01, "promote_fallbacks": false,
-      "penetration": {"method": "baumgarte", "beta": 0.3, "slop": 0.001, "iterations": 7}})",
+      "penetration": {"method": "baumgarte", "beta": 0.3, "slop": 0.001, "iterations": 7,
+                      "solver": "bgs", "tolerance": 1e-5}})",
                                         R"("solver": "ac_newton",)");
   const engine::WorldSettings& s = scene.settings;
-  EXPECT_EQ(s.solver, "pgs");
-  EXPECT_EQ(s.solverOptions.tolerance, 1e-4);
-  EXPECT_EQ(s.solverOptions.maxIterations, 50);
-  EXPECT_EQ(s.solverOptions.timeLimitSeconds, 0.5);
-  EXPECT_FALSE(s.solverOptions.useWarmStart);
-  EXPECT_FALSE(s.promoteFallbacks);
-  EXPECT_TRUE(engine::WorldSettings{}.promoteFallbacks);
+  EXPECT_EQ(s.solve.choice, coulomb::solvers::SolverChoice::preferred("pgs"));
+  EXPECT_EQ(s.solve.options.tolerance, 1e-4);
+  EXPECT_EQ(s.solve.options.maxIterations, 50);
+  EXPECT_EQ(s.solve.options.timeLimitSeconds, 0.5);
+  EXPECT_FALSE(s.solve.options.useWarmStart);
+  EXPECT_FALSE(s.solve.promotion.enabled);
+  EXPECT_TRUE(engine::WorldSettings{}.solve.promotion.enabled);
   EXPECT_EQ(s.contact.restitutionThreshold, 0.1);
   EXPECT_FALSE(s.contact.speculativeContacts);
   EXPECT_EQ(s.collision.speculativeMargin, 0.01);
@@ -61,8 +62,10 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
   EXPECT_EQ(s.contact.penetration.beta, 0.3);
   EXPECT_EQ(s.contact.penetration.slop, 0.001);
   EXPECT_EQ(s.contact.penetration.iterations, 7);
-  EXPECT_EQ(scene.bodies[1].solver, "ac_newton");
-  EXPECT_TRUE(scene.bodies[0].solver.empty());
+  EXPECT_EQ(s.contact.penetration.solver, "bgs");
+  EXPECT_EQ(s.contact.penetration.tolerance, 1e-5);
+  EXPECT_EQ(scene.bodies[1].solver, coulomb::solvers::SolverChoice::preferred("ac_newton"));
+  EXPECT_FALSE(scene.bodies[0].solver.has_value());
 }
 
 TEST(SceneSolverSection, TheWorldUsesTheSceneSolverAndTheBodyOverride) {
@@ -75,8 +78,22 @@ TEST(SceneSolverSection, TheWorldUsesTheSceneSolverAndTheBodyOverride) {
 }
 
 TEST(SceneSolverSection, ChainsAndLoneSolversAreAccepted) {
-  EXPECT_EQ(parse(R"({"name": "pgs!"})").settings.solver, "pgs!");
-  EXPECT_EQ(parse(R"({"name": "bgs,ac_newton"})").settings.solver, "bgs,ac_newton");
+  EXPECT_EQ(parse(R"({"name": "pgs!"})").settings.solve.choice,
+            coulomb::solvers::SolverChoice::only("pgs"));
+  EXPECT_EQ(parse(R"({"name": "bgs,ac_newton"})").settings.solve.choice,
+            coulomb::solvers::SolverChoice::chain({"bgs", "ac_newton"}));
+  EXPECT_EQ(parse(R"({"name": "bgs,ac_newton"})").settings.solve.choice.text(), "bgs,ac_newton");
+}
+
+// The text form is parsed once, at the edge, with one set of rules: a '!' only ends a lone name
+// (World used to accept "pgs!,bgs" and fail at solve time).
+TEST(SceneSolverSection, MalformedChainsAreRefusedAtTheEdge) {
+  EXPECT_NE(errorOf(R"({"name": "pgs!,bgs"})").find("solver.name: '!' only ends"),
+            std::string::npos)
+      << errorOf(R"({"name": "pgs!,bgs"})");
+  EXPECT_NE(errorOf(R"({"name": "pgs,,bgs"})").find("empty solver name"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"penetration": {"solver": "nope"}})").find("unknown solver 'nope'"),
+            std::string::npos);
 }
 
 TEST(SceneSolverSection, BadValuesNameTheJsonPath) {

@@ -1,5 +1,6 @@
-// engine/SolverPromotion: which plan an island gets after a fallback finished its last step, and
-// when a promotion is recorded or cleared.
+// engine/SolverPromotion: the promotion rule of the solve policy (solvers::PromotionRule): which
+// plan an island gets after a fallback finished its last step, and when a promotion is recorded
+// or cleared.
 #include <coulomb/engine/SolverPromotion.hpp>
 
 #include <gtest/gtest.h>
@@ -8,12 +9,14 @@ using namespace coulomb;
 
 namespace {
 
+const solvers::PromotionRule kRule;  // the defaults
+
 solvers::SolvePlan pilePlan() {
   solvers::SolvePlan plan;
-  plan.solvers = {"pgs", "ac_newton", "bgs"};
-  plan.stallWindows = {20};
+  plan.attempts = {{"pgs", 0, 20}, {"ac_newton"}, {"bgs"}};
   plan.options.tolerance = 1e-6;
-  plan.reason = "pile";
+  plan.rule = solvers::PlanRule::PileByNu;
+  plan.features.unknowns = kRule.minUnknowns + 1;
   return plan;
 }
 
@@ -41,41 +44,45 @@ engine::Island islandOf(std::vector<std::int32_t> bodies) {
   return island;
 }
 
+std::vector<std::string> names(const solvers::SolvePlan& plan) {
+  std::vector<std::string> out;
+  for (const solvers::SolveAttempt& a : plan.attempts) out.push_back(a.solver);
+  return out;
+}
+
 }  // namespace
 
 TEST(SolverPromotionTest, NothingRecordedLeavesThePlan) {
   engine::SolverPromotion promotion;
   promotion.resize(4);
-  bool promoted = true;
-  const solvers::SolvePlan plan = promotion.apply(islandOf({1, 2}), pilePlan(), promoted);
-  EXPECT_FALSE(promoted);
-  EXPECT_EQ(plan.solvers, pilePlan().solvers);
-  EXPECT_EQ(plan.stallWindows, pilePlan().stallWindows);
+  solvers::SolvePlan plan = pilePlan();
+  promotion.apply(islandOf({1, 2}), kRule, plan);
+  EXPECT_FALSE(plan.promoted);
+  EXPECT_EQ(plan.attempts, pilePlan().attempts);
 }
 
 TEST(SolverPromotionTest, FallbackGoesFirstOnceWithItsOwnSettings) {
   engine::SolverPromotion promotion;
   promotion.resize(4);
   const engine::Island island = islandOf({1, 2});
-  promotion.record(island, pilePlan(), fellBackTo("ac_newton"), false);
+  promotion.record(island, kRule, true, pilePlan(), fellBackTo("ac_newton"));
   EXPECT_EQ(promotion.names()[1], "ac_newton");
   EXPECT_EQ(promotion.names()[0], "");  // not in the island
 
-  bool promoted = false;
-  const solvers::SolvePlan plan = promotion.apply(island, pilePlan(), promoted);
-  ASSERT_TRUE(promoted);
+  solvers::SolvePlan plan = pilePlan();
+  promotion.apply(island, kRule, plan);
+  ASSERT_TRUE(plan.promoted);
   // The promoted attempt (capped, tighter) goes first; the plan follows unchanged, so a failed
   // promotion still gets pgs and the full ac_newton fallback.
-  EXPECT_EQ(plan.solvers, (std::vector<std::string>{"ac_newton", "pgs", "ac_newton", "bgs"}));
-  EXPECT_EQ(plan.stallWindows, (std::vector<int>{0, 20, 0, 0}));
-  EXPECT_EQ(plan.iterationCaps, (std::vector<int>{engine::kPromotedIterationCap, 0, 0, 0}));
-  ASSERT_EQ(plan.tolerances.size(), 4u);
-  EXPECT_DOUBLE_EQ(plan.tolerances.front(), engine::kPromotedToleranceScale * 1e-6);
-  EXPECT_EQ(plan.tolerances[1], 0.0);
-  EXPECT_NE(plan.reason.find("ac_newton first"), std::string::npos);
+  EXPECT_EQ(names(plan), (std::vector<std::string>{"ac_newton", "pgs", "ac_newton", "bgs"}));
+  EXPECT_EQ(plan.attempts[0].maxIterations, kRule.iterationCap);
+  EXPECT_EQ(plan.attempts[0].stallWindow, 0);
+  EXPECT_DOUBLE_EQ(plan.attempts[0].tolerance, kRule.toleranceScale * 1e-6);
+  EXPECT_EQ(plan.attempts[1], pilePlan().attempts[0]);
+  EXPECT_NE(plan.reason().find("ac_newton first"), std::string::npos);
 
   // The promoted step never promotes again, even when it fell back itself.
-  promotion.record(island, plan, fellBackTo("bgs"), true);
+  promotion.record(island, kRule, true, plan, fellBackTo("bgs"));
   EXPECT_EQ(promotion.names()[1], "");
   EXPECT_EQ(promotion.names()[2], "");
 }
@@ -87,25 +94,25 @@ TEST(SolverPromotionTest, OnlyAFallbackThatConvergedAfterAFailedPrimaryIsPromote
   solvers::PlanOutcome converged;  // the primary converged: nothing to promote
   converged.attempts = {attempt("pgs", solvers::SolverStatus::Converged)};
   converged.best.report = converged.attempts.front();
-  promotion.record(island, pilePlan(), converged, false);
+  promotion.record(island, kRule, true, pilePlan(), converged);
   EXPECT_EQ(promotion.names()[0], "");
 
   solvers::PlanOutcome failed = fellBackTo("ac_newton");  // the fallback did not converge either
   failed.attempts.back().status = solvers::SolverStatus::MaxIterations;
   failed.best.report = failed.attempts.back();
-  promotion.record(island, pilePlan(), failed, false);
+  promotion.record(island, kRule, true, pilePlan(), failed);
   EXPECT_EQ(promotion.names()[0], "");
 
   solvers::PlanOutcome farOff = fellBackTo("ac_newton");  // pgs far above the tolerance:
   farOff.attempts.front().residual = 1e-2;                // Newton did real work, no alternation
-  promotion.record(island, pilePlan(), farOff, false);
+  promotion.record(island, kRule, true, pilePlan(), farOff);
   EXPECT_EQ(promotion.names()[0], "");
   solvers::PlanOutcome slow = fellBackTo("ac_newton");  // a long fallback: no quick finish
-  slow.attempts.back().iterations = engine::kPromotedIterationCap + 1;
+  slow.attempts.back().iterations = kRule.iterationCap + 1;
   slow.best.report = slow.attempts.back();
-  promotion.record(island, pilePlan(), slow, false);
+  promotion.record(island, kRule, true, pilePlan(), slow);
   EXPECT_EQ(promotion.names()[0], "");
-  promotion.record(island, pilePlan(), fellBackTo("ac_newton"), false);
+  promotion.record(island, kRule, true, pilePlan(), fellBackTo("ac_newton"));
   EXPECT_EQ(promotion.names()[0], "ac_newton");
 }
 
@@ -113,10 +120,43 @@ TEST(SolverPromotionTest, APromotedSolverOutsideThePlanIsIgnored) {
   engine::SolverPromotion promotion;
   promotion.resize(2);
   const engine::Island island = islandOf({0, 1});
-  promotion.record(island, pilePlan(), fellBackTo("fb_newton"), false);
+  promotion.record(island, kRule, true, pilePlan(), fellBackTo("fb_newton"));
   solvers::SolvePlan plan = pilePlan();
-  bool promoted = true;
-  plan = promotion.apply(island, plan, promoted);
-  EXPECT_FALSE(promoted);
-  EXPECT_EQ(plan.solvers.front(), "pgs");
+  promotion.apply(island, kRule, plan);
+  EXPECT_FALSE(plan.promoted);
+  EXPECT_EQ(plan.attempts.front().solver, "pgs");
+}
+
+// The rule is data of the policy: off, for small islands or for a named choice nothing is
+// promoted, and its thresholds are the ones the policy holds.
+TEST(SolverPromotionTest, TheRuleIsThePolicys) {
+  engine::SolverPromotion promotion;
+  promotion.resize(1);
+  const engine::Island island = islandOf({0});
+  solvers::PromotionRule off = kRule;
+  off.enabled = false;
+  promotion.record(island, off, true, pilePlan(), fellBackTo("ac_newton"));
+  EXPECT_EQ(promotion.names()[0], "");
+  promotion.record(island, kRule, false, pilePlan(), fellBackTo("ac_newton"));  // named choice
+  EXPECT_EQ(promotion.names()[0], "");
+  solvers::SolvePlan small = pilePlan();
+  small.features.unknowns = kRule.minUnknowns;
+  promotion.record(island, kRule, true, small, fellBackTo("ac_newton"));
+  EXPECT_EQ(promotion.names()[0], "");
+
+  solvers::PromotionRule tight = kRule;
+  tight.nearMiss = 1.2;  // pgs ended at 1.5x the tolerance: no longer a near miss
+  promotion.record(island, tight, true, pilePlan(), fellBackTo("ac_newton"));
+  EXPECT_EQ(promotion.names()[0], "");
+  solvers::PromotionRule everywhere = kRule;
+  everywhere.minUnknowns = 0;
+  everywhere.iterationCap = 2;
+  everywhere.toleranceScale = 0.5;
+  promotion.record(island, everywhere, true, small, fellBackTo("ac_newton"));
+  EXPECT_EQ(promotion.names()[0], "ac_newton");
+  solvers::SolvePlan plan = small;
+  promotion.apply(island, everywhere, plan);
+  ASSERT_TRUE(plan.promoted);
+  EXPECT_EQ(plan.attempts[0].maxIterations, 2);
+  EXPECT_DOUBLE_EQ(plan.attempts[0].tolerance, 0.5e-6);
 }

@@ -74,7 +74,7 @@ struct Pair {
 
 Pair build(const UrdfModel& model, const Eigen::VectorXd& q) {
   engine::WorldSettings settings;
-  settings.solverOptions.tolerance = 1e-12;  // joint rows solved tightly: compare dynamics
+  settings.solve.options.tolerance = 1e-12;  // joint rows solved tightly: compare dynamics
   Pair p{engine::World(settings), engine::World(settings), {}, {}};
   engine::ArticulationDesc desc = engine::io::toArticulationDesc(model, "tree");
   desc.q = q;

@@ -86,7 +86,7 @@ TEST(WorldArticulation, FreeMotionEqualsTheStandaloneIntegrator) {
 
 TEST(WorldArticulation, ArmRestingOnATableStaysAtRestAndCarriesItsWeight) {
   engine::WorldSettings settings;
-  settings.solverOptions.tolerance = 1e-10;
+  settings.solve.options.tolerance = 1e-10;
   engine::World world(settings);
   const double m = 2.0, h = 0.01;
   const Eigen::Vector3d pivot(0, 0, 1);
@@ -96,7 +96,7 @@ TEST(WorldArticulation, ArmRestingOnATableStaysAtRestAndCarriesItsWeight) {
   for (int k = 0; k < 300; ++k) {
     const engine::StepReport report = world.step(h);
     for (const auto& island : report.islands)
-      ASSERT_EQ(island.solve.status, solvers::SolverStatus::Converged)
+      ASSERT_EQ(island.status, solvers::SolverStatus::Converged)
           << "step " << k << ": " << island.solve.message;
     if (k < 5) continue;
     ASSERT_EQ(report.islands.size(), 1u) << "step " << k;

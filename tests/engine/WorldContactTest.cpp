@@ -33,7 +33,7 @@ BodyId addBox(engine::World& world, const geometry::Pose& pose, double h, double
   box.shapes.push_back({geometry::Box{Eigen::Vector3d::Constant(h)}, {}, {mu, 0.0}, {}});
   box.mass = geometry::SpatialInertia{m, Eigen::Vector3d::Zero(),
                                       Eigen::Matrix3d::Identity() * m * 8.0 * h * h / 12.0};
-  box.solver = solver;
+  if (!solver.empty()) box.solver = coulomb::solvers::solverChoice(solver);
   return world.createBody(box);
 }
 
@@ -43,8 +43,8 @@ class RestingBox : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RestingBox, StaysStillAndCarriesItsWeight) {
   engine::WorldSettings settings;
-  settings.solver = GetParam();
-  settings.solverOptions.tolerance = 1e-10;  // the weight to 1e-9 needs an answer this exact
+  settings.solve.choice = coulomb::solvers::solverChoice(GetParam());
+  settings.solve.options.tolerance = 1e-10;  // the weight to 1e-9 needs an answer this exact
   engine::World world(settings);
   addGround(world, Eigen::Quaterniond::Identity(), 0.5);
   const BodyId box = addBox(world, geometry::Pose::translation({0, 0, 0.1}), 0.1, 1.0, 0.5);
@@ -118,8 +118,8 @@ TEST(WorldContact, PushAtAnAngleSlidesStraight) {
 
 TEST(WorldContact, UnknownSolverIsRejected) {
   engine::WorldSettings settings;
-  settings.solver = "no_such_solver";
+  settings.solve.choice = coulomb::solvers::solverChoice("no_such_solver");
   EXPECT_THROW(engine::World world(settings), engine::CoulombError);
   engine::World world;
-  EXPECT_THROW(world.setSolver("nope"), engine::CoulombError);
+  EXPECT_THROW(world.setSolver(coulomb::solvers::solverChoice("nope")), engine::CoulombError);
 }

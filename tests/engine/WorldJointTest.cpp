@@ -16,7 +16,7 @@ namespace {
 engine::WorldSettings settingsWith(joints::StabilizationMethod method, const std::string& solver) {
   engine::WorldSettings s;
   s.jointStabilization.method = method;
-  s.solver = solver;
+  s.solve.choice = coulomb::solvers::solverChoice(solver);
   return s;
 }
 

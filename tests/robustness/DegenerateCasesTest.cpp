@@ -157,9 +157,9 @@ TEST(DegenerateCases, HugeVelocitiesStayFinite) {
 
 TEST(DegenerateCases, ASolverAtItsIterationLimitEveryStepKeepsTheStackStanding) {
   engine::io::Scene scene = scenes::loadBuiltinScene("box_stack_10");
-  scene.settings.solver = "pgs!";                   // no fallback
-  scene.settings.solverOptions.tolerance = 1e-300;  // never reached
-  scene.settings.solverOptions.maxIterations = 20;
+  scene.settings.solve.choice = coulomb::solvers::solverChoice("pgs!");  // no fallback
+  scene.settings.solve.options.tolerance = 1e-300;                       // never reached
+  scene.settings.solve.options.maxIterations = 20;
   engine::World world = engine::io::buildWorld(scene);
   const geometry::BodyId top = world.idAt(world.state().size() - 1);
   const double start = world.pose(top).position.z();

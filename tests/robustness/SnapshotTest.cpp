@@ -151,12 +151,23 @@ TEST(Snapshot, SettingsChangedThroughTheApiAreRestored) {
   const engine::io::Scene scene = scenes::loadBuiltinScene("box_stack_10");
   engine::World original = engine::io::buildWorld(scene);
   original.setGravity(Eigen::Vector3d(0.0, 1.0, -5.0));
-  original.setSolver("pgs");
+  coulomb::solvers::SolvePolicy policy = original.settings().solve;
+  policy.choice = coulomb::solvers::SolverChoice::chain({"pgs", "ac_newton"});
+  policy.choice.attempts[0].maxIterations = 7;
+  policy.chooser.pileNu = 1.25;
+  policy.promotion.nearMiss = 3.0;
+  original.setSolvePolicy(policy);
+  original.setSolverOverride(original.idAt(1), coulomb::solvers::SolverChoice::only("bgs"));
   original.step();
   engine::World restored = engine::io::buildWorld(scene);
   io::restoreSnapshot(restored, io::saveSnapshot(original));
   EXPECT_EQ(restored.settings().gravity, Eigen::Vector3d(0.0, 1.0, -5.0));
-  EXPECT_EQ(restored.settings().solver, "pgs");
+  EXPECT_EQ(restored.settings().solve.choice, policy.choice);
+  EXPECT_EQ(restored.settings().solve.chooser, policy.chooser);
+  EXPECT_EQ(restored.settings().solve.promotion, policy.promotion);
+  // and the per-body choice: both worlds solve the next step alike
+  EXPECT_EQ(original.step().islands.front().reason(), restored.step().islands.front().reason());
+  EXPECT_EQ(original.stateHash(), restored.stateHash());
 }
 
 namespace {

@@ -33,7 +33,8 @@ TEST(GaussSeidelLoop, SolvesScalarRowsExactly) {
   const SolveContext context(o, SolveContext::Clock::now());
   Eigen::VectorXd r = Eigen::VectorXd::Zero(6);
   SolverReport report;
-  const ContactUpdate keep = [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {};
+  auto keepRule = [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {};
+  const ContactUpdate keep(keepRule);
   // With the contact frozen at 0, the scalar rows alone must reach their exact values.
   runGaussSeidel(pp, context, GaussSeidelSettings{}, keep, r, report);
   Eigen::VectorXd u;
@@ -69,8 +70,8 @@ TEST(GaussSeidelLoop, StallIsReportedAndTimeLimitHonoured) {
   SolverReport report;
   GaussSeidelSettings s;
   s.stallWindow = 50;
-  runGaussSeidel(
-      pp, context, s, [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {}, r, report);
+  auto nothing = [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {};
+  runGaussSeidel(pp, context, s, ContactUpdate(nothing), r, report);
   EXPECT_EQ(report.status, SolverStatus::Stalled);
   o.timeLimitSeconds = 0.01;
   SolverReport timed;
@@ -87,7 +88,8 @@ TEST(GaussSeidelLoop, OptionsStallWindowShortensTheSolversOwn) {
   // the window (SolverOptions::stallWindow = 20 < the settings' 500), not at the 500-sweep one.
   const ContactProblem p = fixtures::randomMechanical(6, 10, 0.5, 9);
   const PreparedProblem pp = PreparedProblem::from(p);
-  const ContactUpdate frozen = [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {};
+  auto frozenRule = [](int, const Eigen::Vector3d&, Eigen::Vector3d&) {};
+  const ContactUpdate frozen(frozenRule);
   auto sweepsUntilStall = [&](int optionsWindow) {
     SolverOptions o;
     o.tolerance = 0;  // unreachable

@@ -19,12 +19,19 @@ ContactProblem diagonalProblem(int contacts, bool separating, double heavyRatio 
                                   "diag");
 }
 
+std::vector<std::string> names(const SolvePlan& plan) {
+  std::vector<std::string> out;
+  for (const SolveAttempt& a : plan.attempts) out.push_back(a.solver);
+  return out;
+}
+
 }  // namespace
 
 TEST(SolverChooser, SeparatingIslandIsExactAtZero) {
-  const SolvePlan plan = SolverChooser().choose(diagonalProblem(6, true), {}, "auto", {});
+  const SolvePlan plan =
+      SolverChooser().choose(diagonalProblem(6, true), {}, SolverChoice::automatic(), {});
   EXPECT_TRUE(plan.features.zeroIsExact);
-  EXPECT_NE(plan.reason.find("r = 0 is exact"), std::string::npos) << plan.reason;
+  EXPECT_NE(plan.reason().find("r = 0 is exact"), std::string::npos) << plan.reason();
   // an equality row forbids the shortcut
   ContactProblem p = diagonalProblem(2, true);
   p.blocks.push_back(ConstraintBlock::equality());
@@ -32,48 +39,55 @@ TEST(SolverChooser, SeparatingIslandIsExactAtZero) {
   p.W = DelassusOperator::dense(W);
   p.q.conservativeResize(7);
   p.q[6] = 0.1;
-  const SolvePlan withJoint = SolverChooser().choose(p, {}, "auto", {});
+  const SolvePlan withJoint = SolverChooser().choose(p, {}, SolverChoice::automatic(), {});
   EXPECT_FALSE(withJoint.features.zeroIsExact);
   EXPECT_EQ(withJoint.features.equalityRows, 1);
 }
 
 TEST(SolverChooser, OneContactIsExactLocalSolve) {
-  const SolvePlan plan = SolverChooser().choose(diagonalProblem(1, false), {}, "auto", {});
-  ASSERT_FALSE(plan.solvers.empty());
-  EXPECT_EQ(plan.solvers.front(), "bgs");
-  EXPECT_NE(plan.reason.find("one contact"), std::string::npos);
+  const SolvePlan plan =
+      SolverChooser().choose(diagonalProblem(1, false), {}, SolverChoice::automatic(), {});
+  ASSERT_FALSE(plan.attempts.empty());
+  EXPECT_EQ(plan.attempts.front().solver, "bgs");
+  EXPECT_NE(plan.reason().find("one contact"), std::string::npos);
 }
 
 TEST(SolverChooser, NuDecidesBetweenNewtonAndGaussSeidel) {
   const ContactProblem p = diagonalProblem(20, false);
-  const SolvePlan wellPosed = SolverChooser().choose(p, {120}, "auto", {});  // nu = 0.5
-  EXPECT_EQ(wellPosed.solvers.front(), "ac_newton") << wellPosed.reason;
+  const SolvePlan wellPosed =
+      SolverChooser().choose(p, {120}, SolverChoice::automatic(), {});  // nu = 0.5
+  EXPECT_EQ(wellPosed.attempts.front().solver, "ac_newton") << wellPosed.reason();
   EXPECT_NEAR(wellPosed.features.nu, 0.5, 1e-12);
-  const SolvePlan pile = SolverChooser().choose(p, {24}, "auto", {});  // nu = 2.5
-  EXPECT_EQ(pile.solvers.front(), "pgs") << pile.reason;
-  EXPECT_NE(pile.reason.find("nu = 2.5"), std::string::npos) << pile.reason;
-  EXPECT_EQ(pile.solvers[1], "ac_newton");  // Newton as the fallback of a stalled pile
+  const SolvePlan pile =
+      SolverChooser().choose(p, {24}, SolverChoice::automatic(), {});  // nu = 2.5
+  EXPECT_EQ(pile.attempts.front().solver, "pgs") << pile.reason();
+  EXPECT_NE(pile.reason().find("nu = 2.5"), std::string::npos) << pile.reason();
+  EXPECT_EQ(pile.attempts[1].solver, "ac_newton");  // Newton as the fallback of a stalled pile
   // pgs gives way to Newton once it stagnates (ChooserSettings::pileStallSweeps); a user's
   // request runs with the user's options.
-  ASSERT_FALSE(pile.stallWindows.empty());
-  EXPECT_EQ(pile.stallWindows.front(), ChooserSettings{}.pileStallSweeps);
-  EXPECT_TRUE(SolverChooser().choose(p, {24}, "pgs", {}).stallWindows.empty());
+  EXPECT_EQ(pile.attempts.front().stallWindow, ChooserSettings{}.pileStallSweeps);
+  EXPECT_EQ(SolverChooser()
+                .choose(p, {24}, SolverChoice::preferred("pgs"), {})
+                .attempts.front()
+                .stallWindow,
+            0);
 }
 
 TEST(SolverChooser, MassRatioForcesNewton) {
   const ContactProblem p = diagonalProblem(20, false, 1e4);
-  const SolvePlan plan = SolverChooser().choose(p, {24}, "auto", {});  // nu 2.5 but kappa 1e4
+  const SolvePlan plan =
+      SolverChooser().choose(p, {24}, SolverChoice::automatic(), {});  // nu 2.5 but kappa 1e4
   EXPECT_NEAR(plan.features.massRatio, 1e4, 1e-9);
-  EXPECT_EQ(plan.solvers.front(), "ac_newton") << plan.reason;
-  EXPECT_NE(plan.reason.find("mass ratio"), std::string::npos);
+  EXPECT_EQ(plan.attempts.front().solver, "ac_newton") << plan.reason();
+  EXPECT_NE(plan.reason().find("mass ratio"), std::string::npos);
 }
 
 TEST(SolverChooser, FewActiveContactsTryBgsFirstWithACap) {
-  const SolvePlan plan = SolverChooser().choose(diagonalProblem(3, false), {}, "auto", {});
-  EXPECT_EQ(plan.solvers.front(), "bgs");
-  ASSERT_FALSE(plan.iterationCaps.empty());
-  EXPECT_GT(plan.iterationCaps.front(), 0);
-  EXPECT_EQ(plan.solvers[1], "ac_newton");
+  const SolvePlan plan =
+      SolverChooser().choose(diagonalProblem(3, false), {}, SolverChoice::automatic(), {});
+  EXPECT_EQ(plan.attempts.front().solver, "bgs");
+  EXPECT_GT(plan.attempts.front().maxIterations, 0);
+  EXPECT_EQ(plan.attempts[1].solver, "ac_newton");
 }
 
 TEST(SolverChooser, BodySpaceIslandsTryShortBgsBeforeNewton) {
@@ -85,42 +99,72 @@ TEST(SolverChooser, BodySpaceIslandsTryShortBgsBeforeNewton) {
   for (int c = 0; c < 20; ++c) factors->setSide(c, 1, c, J, J.transpose());
   ContactProblem p = diagonalProblem(20, false);
   p.W = DelassusOperator::bodySpace(factors);
-  EXPECT_EQ(SolverChooser().choose(p, {120}, "auto", {}).solvers.front(), "ac_newton");  // off
+  EXPECT_EQ(SolverChooser().choose(p, {120}, SolverChoice::automatic(), {}).attempts.front().solver,
+            "ac_newton");  // off
   ChooserSettings s;
   s.factoredTrySweeps = 30;
-  const SolvePlan plan = SolverChooser(s).choose(p, {120}, "auto", {});
+  const SolvePlan plan = SolverChooser(s).choose(p, {120}, SolverChoice::automatic(), {});
   EXPECT_TRUE(plan.features.factored);
-  ASSERT_EQ(plan.solvers.size(), 3u);
-  EXPECT_EQ(plan.solvers.front(), "bgs") << plan.reason;
-  EXPECT_EQ(plan.solvers[1], "ac_newton");
-  ASSERT_FALSE(plan.iterationCaps.empty());
-  EXPECT_EQ(plan.iterationCaps.front(), 30);
+  ASSERT_EQ(plan.attempts.size(), 3u);
+  EXPECT_EQ(plan.attempts.front().solver, "bgs") << plan.reason();
+  EXPECT_EQ(plan.attempts[1].solver, "ac_newton");
+  EXPECT_EQ(plan.attempts.front().maxIterations, 30);
   EXPECT_NEAR(plan.features.massRatio, 1.0, 1e-12);  // the diagonal read from the factors
 }
 
 TEST(SolverChooser, LargeIslandsAvoidNewton) {
   ChooserSettings s;
   s.newtonMaxUnknowns = 30;
-  const SolvePlan plan = SolverChooser(s).choose(diagonalProblem(20, false), {}, "auto", {});
-  for (const std::string& n : plan.solvers) EXPECT_NE(n, "ac_newton");
+  const SolvePlan plan =
+      SolverChooser(s).choose(diagonalProblem(20, false), {}, SolverChoice::automatic(), {});
+  for (const SolveAttempt& a : plan.attempts) EXPECT_NE(a.solver, "ac_newton");
 }
 
 TEST(SolverChooser, NamedSoloAndChainRequests) {
   const ContactProblem p = diagonalProblem(5, false);
-  const SolvePlan named = SolverChooser().choose(p, {}, "pgs", {});
-  EXPECT_EQ(named.solvers.front(), "pgs");
-  EXPECT_GT(named.solvers.size(), 1u);  // fallbacks kept
-  EXPECT_TRUE(named.iterationCaps.empty());
-  const SolvePlan solo = SolverChooser().choose(p, {}, "pgs!", {});
-  EXPECT_EQ(solo.solvers, std::vector<std::string>{"pgs"});
-  const SolvePlan chain = SolverChooser().choose(p, {}, "fb_newton,bgs", {});
-  EXPECT_EQ(chain.solvers, (std::vector<std::string>{"fb_newton", "bgs"}));
+  const SolvePlan named = SolverChooser().choose(p, {}, SolverChoice::preferred("pgs"), {});
+  EXPECT_EQ(named.attempts.front().solver, "pgs");
+  EXPECT_GT(named.attempts.size(), 1u);                // fallbacks kept
+  EXPECT_EQ(named.attempts.front().maxIterations, 0);  // a user's choice: the user's options
+  const SolvePlan solo = SolverChooser().choose(p, {}, SolverChoice::only("pgs"), {});
+  EXPECT_EQ(names(solo), std::vector<std::string>{"pgs"});
+  const SolvePlan chain =
+      SolverChooser().choose(p, {}, SolverChoice::chain({"fb_newton", "bgs"}), {});
+  EXPECT_EQ(names(chain), (std::vector<std::string>{"fb_newton", "bgs"}));
 }
 
 TEST(SolverChooser, Deterministic) {
   const ContactProblem p = fixtures::randomMechanical(12, 30, 0.5, 2);
-  const SolvePlan a = SolverChooser().choose(p, {30}, "auto", {});
-  const SolvePlan b = SolverChooser().choose(p, {30}, "auto", {});
-  EXPECT_EQ(a.solvers, b.solvers);
-  EXPECT_EQ(a.reason, b.reason);
+  const SolvePlan a = SolverChooser().choose(p, {30}, SolverChoice::automatic(), {});
+  const SolvePlan b = SolverChooser().choose(p, {30}, SolverChoice::automatic(), {});
+  EXPECT_EQ(a.attempts, b.attempts);
+  EXPECT_EQ(a.reason(), b.reason());
+}
+
+// A plan is numbers and enums: its reason is formatted only when asked, and says the rule.
+TEST(SolverChooser, TheReasonIsFormattedFromTheRule) {
+  const SolvePlan pile =
+      SolverChooser().choose(diagonalProblem(20, false), {24}, SolverChoice::automatic(), {});
+  EXPECT_EQ(pile.rule, PlanRule::PileByNu);
+  EXPECT_NE(pile.reason().find(planRuleName(PlanRule::PileByNu)), std::string::npos);
+  EXPECT_NE(pile.reason().find("20 contacts"), std::string::npos) << pile.reason();
+}
+
+// Per-attempt limits of a user's chain reach the plan unchanged, and a preferred solver keeps its
+// own limits in front of the automatic fallbacks.
+TEST(SolverChooser, AttemptLimitsOfAChoiceAreKept) {
+  SolverChoice chain = SolverChoice::chain({"bgs", "ac_newton"});
+  chain.attempts[0].maxIterations = 7;
+  chain.attempts[0].tolerance = 1e-9;
+  const SolvePlan plan = SolverChooser().choose(diagonalProblem(5, false), {}, chain, {});
+  EXPECT_EQ(plan.rule, PlanRule::Exactly);
+  EXPECT_EQ(plan.attempts, chain.attempts);
+  EXPECT_EQ(plan.optionsFor(plan.attempts[0]).maxIterations, 7);
+  EXPECT_EQ(plan.optionsFor(plan.attempts[0]).tolerance, 1e-9);
+  SolverChoice preferred = SolverChoice::preferred("pgs");
+  preferred.attempts[0].stallWindow = 9;
+  const SolvePlan p = SolverChooser().choose(diagonalProblem(20, false), {24}, preferred, {});
+  EXPECT_EQ(p.attempts.front(), preferred.attempts.front());
+  EXPECT_EQ(p.attempts[1].solver, "ac_newton");  // the pile's fallbacks, pgs not repeated
+  for (std::size_t k = 1; k < p.attempts.size(); ++k) EXPECT_NE(p.attempts[k].solver, "pgs");
 }

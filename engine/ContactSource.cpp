@@ -1,4 +1,4 @@
-#include <coulomb/engine/ContactRowsEmitter.hpp>
+#include <coulomb/engine/ContactSource.hpp>
 
 #include <coulomb/joints/ContactRows.hpp>
 
@@ -65,20 +65,27 @@ Eigen::Vector3d centreOf(const geometry::BodyState& state, const geometry::BodyI
 
 }  // namespace
 
-joints::RowSet emitContactRows(const Island& island,
-                               const std::vector<geometry::ContactManifold>& manifolds,
-                               const geometry::BodyState& state, const ContactSettings& settings,
-                               double h, std::vector<ContactRowSource>& sources) {
-  joints::RowSet rows;
-  sources.clear();
-  std::size_t points = 0;  // one reservation: a RowBlock is ~0.8 KB, regrowth copied them all
-  for (const std::int32_t m : island.constraints) points += manifolds[m].pointCount;
+void ContactSource::appendEdges(std::uint8_t owner, const RowContext& context, StepEdges& edges) {
+  const std::vector<geometry::ContactManifold>& manifolds = context.manifolds;
+  for (std::size_t m = 0; m < manifolds.size(); ++m)
+    edges.add(owner, static_cast<std::int32_t>(m),
+              {static_cast<std::int32_t>(manifolds[m].bodyA.index),
+               static_cast<std::int32_t>(manifolds[m].bodyB.index)});
+}
+
+void ContactSource::emitRows(std::span<const std::int32_t> items, const RowContext& context,
+                             joints::RowSet& rows) {
+  std::vector<geometry::ContactManifold>& manifolds = context.manifolds;
+  const geometry::BodyState& state = context.state;
+  const ContactSettings& settings = context.contact;
+  const double h = context.h;
+  std::size_t points = rows.blocks.size();  // one reservation: a RowBlock is ~0.8 KB
+  for (const std::int32_t m : items) points += manifolds[m].pointCount;
   rows.blocks.reserve(points);
-  sources.reserve(points);
-  for (const std::int32_t m : island.constraints) {
-    const geometry::ContactManifold& manifold = manifolds[m];
+  for (const std::int32_t m : items) {
+    geometry::ContactManifold& manifold = manifolds[m];
     for (int p = 0; p < manifold.pointCount; ++p) {
-      const geometry::ContactPoint& point = manifold.points[p];
+      geometry::ContactPoint& point = manifold.points[p];
       joints::ContactPointFrame frame;
       frame.bodyA = manifold.bodyA;
       frame.bodyB = manifold.bodyB;
@@ -89,8 +96,7 @@ joints::RowSet emitContactRows(const Island& island,
       frame.centreA = centreOf(state, manifold.bodyA);
       frame.centreB = centreOf(state, manifold.bodyB);
       frame.friction = manifold.friction;
-      frame.key = (static_cast<std::uint64_t>(manifold.colliderA.index) << 40) ^
-                  (static_cast<std::uint64_t>(manifold.colliderB.index) << 16) ^ point.featureId;
+      frame.key = contactKey(m, p);
 
       // Newton's restitution law on the normal velocity before the impulse (v*): the target is
       // u_N+ >= -e u_N-, i.e. the bias e u_N- (< 0) added to u_N (survey, sec. 5.4).
@@ -127,29 +133,31 @@ joints::RowSet emitContactRows(const Island& island,
         block.warmStart[0] = point.normalImpulse;
         if (block.rows() == 3) block.warmStart.tail<2>() = point.tangentImpulse;
       }
+      // Kept with the point: the penetration stage reads the depth, storeImpulses the approach.
+      point.approachVelocity = approach;
       rows.blocks.push_back(std::move(block));
-      sources.push_back({m, p, point.depth, approach});
     }
   }
-  return rows;
 }
 
-void storeContactImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
-                          const Eigen::VectorXd& lambda,
-                          const std::vector<ContactRowSource>& sources,
-                          std::vector<geometry::ContactManifold>& manifolds) {
-  for (std::size_t k = 0; k < rows.blocks.size(); ++k) {
-    geometry::ContactPoint& point = manifolds[sources[k].manifold].points[sources[k].point];
+void ContactSource::storeImpulses(const joints::RowSet& rows, joints::BlockRange range,
+                                  const std::vector<RowBlockSlot>& slots,
+                                  const Eigen::VectorXd& lambda, const RowContext& context) {
+  std::vector<geometry::ContactManifold>& manifolds = context.manifolds;
+  for (std::size_t k = range.first; k < range.end(); ++k) {
+    const joints::RowBlock& block = rows.blocks[k];
+    geometry::ContactPoint& point =
+        manifolds[contactManifold(block.sourceKey)].points[contactPoint(block.sourceKey)];
     point.normalImpulse = lambda[slots[k].offset];
     // The normal row just solved, for the next step's elastic turning (turningApproach): its
     // Jacobian holds (-n, -r_A x n) and (n, r_B x n), and a loaded point (impulse > 0) leaves
     // the solve with u_N + bias = 0 (complementarity), so u_N+ = -bias.
-    const joints::RowBlock& block = rows.blocks[k];
     point.solvedNormal = block.jacobianB.row(0).head<3>().transpose();
     point.solvedMomentA = -block.jacobianA.row(0).tail<3>().transpose();
     point.solvedMomentB = block.jacobianB.row(0).tail<3>().transpose();
-    point.solvedNormalVelocity = point.normalImpulse > 0.0 ? -block.bias[0] : sources[k].approach;
-    point.tangentImpulse = rows.blocks[k].rows() == 3
+    point.solvedNormalVelocity =
+        point.normalImpulse > 0.0 ? -block.bias[0] : point.approachVelocity;
+    point.tangentImpulse = block.rows() == 3
                                ? Eigen::Vector2d(lambda.segment<2>(slots[k].offset + 1))
                                : Eigen::Vector2d::Zero();
   }

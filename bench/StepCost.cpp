@@ -1,0 +1,109 @@
+// Cost of a World step on built-in scenes: wall time per step (median, p99, max, mean), the first
+// step alone, heap allocations per step (a counting operator new in this program only) and the
+// solver figures of the same steps (iterations, worst common residual), so speed is never read
+// without error; the final state hash tells whether two builds computed the same trajectory.
+// Ratios between two builds are only meaningful within one run on one machine.
+//
+//   build/bin/StepCost [--warmup N] [--steps N] SCENE...
+//   e.g. build/bin/StepCost --steps 300 box_incline_A_stick pyramid_10 chain_10
+#include <coulomb/engine/World.hpp>
+#include <coulomb/engine/io/SceneLoader.hpp>
+
+#include "scenes/SceneRegistry.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+#include <string>
+#include <vector>
+
+namespace {
+std::atomic<std::uint64_t> allocations{0};
+std::atomic<std::uint64_t> allocatedBytes{0};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  allocatedBytes.fetch_add(n, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) {
+  return operator new(n);
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+int main(int argc, char** argv) {
+  using namespace coulomb;
+  int warmup = 20, steps = 200;
+  std::vector<std::string> names;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if ((a == "--warmup" || a == "--steps") && i + 1 < argc)
+      (a == "--warmup" ? warmup : steps) = std::atoi(argv[++i]);
+    else
+      names.push_back(a);
+  }
+  if (names.empty() || steps <= 0 || warmup < 0) {
+    std::fprintf(stderr, "usage: StepCost [--warmup N] [--steps N] SCENE...\n");
+    return 2;
+  }
+  std::printf("%-28s %9s %9s %9s %9s %9s %10s %10s %6s %9s  hash\n", "scene", "first_ms",
+              "median_ms", "p99_ms", "max_ms", "mean_ms", "allocs", "bytes", "its", "residual");
+  std::fflush(stdout);
+  for (const std::string& name : names) {
+    const engine::io::Scene scene = scenes::loadBuiltinScene(name);
+    engine::World world = engine::io::buildWorld(scene);
+    const double h = scene.settings.timeStep;
+    std::vector<double> ms;
+    double first = 0.0;
+    std::uint64_t allocs = 0, bytes = 0;
+    long iterations = 0;
+    double worst = 0.0;
+    for (int k = 0; k < warmup + steps; ++k) {
+      const std::uint64_t a0 = allocations.load(), b0 = allocatedBytes.load();
+      const auto t0 = std::chrono::steady_clock::now();
+      const engine::StepReport report = world.step(h);
+      const double t =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      if (k == 0) first = t;
+      if (k < warmup) continue;
+      ms.push_back(t);
+      allocs += allocations.load() - a0;
+      bytes += allocatedBytes.load() - b0;
+      for (const engine::IslandReport& island : report.islands) {
+        for (const solvers::SolverReport& attempt : island.attempts)
+          iterations += attempt.iterations;
+        worst = std::max(worst, island.solve.residual);
+      }
+    }
+    std::vector<double> sorted = ms;
+    std::sort(sorted.begin(), sorted.end());
+    double mean = 0.0;
+    for (const double t : ms) mean += t / static_cast<double>(ms.size());
+    const auto at = [&](double f) {
+      return sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(f * sorted.size()))];
+    };
+    std::printf("%-28s %9.4f %9.4f %9.4f %9.4f %9.4f %10.1f %10.0f %6.1f %9.2e  %016llx\n",
+                name.c_str(), first, at(0.5), at(0.99), sorted.back(), mean,
+                static_cast<double>(allocs) / steps, static_cast<double>(bytes) / steps,
+                static_cast<double>(iterations) / steps, worst,
+                static_cast<unsigned long long>(world.stateHash()));
+    std::fflush(stdout);
+  }
+  return 0;
+}

@@ -1,0 +1,60 @@
+#pragma once
+// The data one World::step passes from stage to stage (docs/architecture.md, "The step"): the
+// constraint edges tagged by their row source, the islands, and per island its rows (one range
+// per source), its problem, plan and outcome. Every stage reads and writes these fields and
+// nothing set aside elsewhere; World keeps one StepData and reuses it, so its vectors keep their
+// capacity from step to step.
+#include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/engine/ProblemAssembler.hpp>
+#include <coulomb/engine/RowSource.hpp>
+#include <coulomb/joints/RowSet.hpp>
+#include <coulomb/solvers/SolvePlan.hpp>
+#include <coulomb/solvers/SolveWithFallback.hpp>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace coulomb::engine {
+
+/// The row sources of a step, in the order their blocks appear in an island's rows (joints
+/// first, then contacts, then tree rows: the order every solver sweeps them in).
+enum RowOwner : std::uint8_t { kJointRows = 0, kContactRows = 1, kTreeRows = 2, kRowOwners = 3 };
+
+/// One island through the step.
+struct IslandWork {
+  Island island;                                            // bodies and edges (ascending)
+  std::array<std::vector<std::int32_t>, kRowOwners> items;  // per source: its items, ascending
+  joints::RowSet rows;                                      // every source's blocks
+  std::array<joints::BlockRange, kRowOwners> blocks;        // per source: where its blocks are
+  AssembledProblem assembled;                               // W, q, slots
+  bool automaticPlan = true;                                // the policy's choice was Automatic
+  solvers::SolvePlan plan;
+  solvers::PlanOutcome outcome;
+  std::optional<solvers::SolverReport> penetration;  // the split impulse's pseudo-solve
+  double penetrationSeconds = 0.0;
+
+  [[nodiscard]] const std::vector<std::int32_t>& itemsOf(RowOwner owner) const {
+    return items[owner];
+  }
+};
+
+struct StepData {
+  double h = 0.0;
+  StepEdges edges;                         // every source's edges, tagged
+  std::vector<std::uint8_t> dynamicMask;   // per body slot: carries unknowns in this step
+  std::vector<Island> islands;             // from the island builder
+  std::vector<IslandWork> work;            // one per island, same order
+  std::vector<std::int32_t> activeJoints;  // joint slots with an edge this step
+  // The world inverse inertias of the velocity solve when some differ from the bodies' own
+  // (JointStage::stabilizedInverseInertias); unused when `stabilized` is false.
+  bool stabilized = false;
+  InverseInertias solveInverseInertias;
+
+  [[nodiscard]] const InverseInertias* inverseInertias() const {
+    return stabilized ? &solveInverseInertias : nullptr;
+  }
+};
+
+}  // namespace coulomb::engine

@@ -1,0 +1,206 @@
+// World::step and its stages: the data flow of docs/architecture.md, "The step". Every stage
+// reads and writes step_ (StepData.hpp) and the World's state; the order below is the order of
+// the step, and no stage relies on a value another stage set aside.
+#include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/ImpactPropagation.hpp>
+#include <coulomb/engine/ImpulseApplier.hpp>
+#include <coulomb/engine/PenetrationCorrection.hpp>
+#include <coulomb/engine/World.hpp>
+#include <coulomb/integrators/FreeMotion.hpp>
+#include <coulomb/integrators/PositionUpdate.hpp>
+#include <coulomb/solvers/SolverChooser.hpp>
+
+#include <chrono>
+#include <cmath>
+
+namespace coulomb::engine {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+StepReport World::step(double h) {
+  if (!std::isfinite(h) || h <= 0.0)
+    throw CoulombError("step: h must be finite and > 0 s (got " + std::to_string(h) + ")");
+  const auto started = std::chrono::steady_clock::now();
+  StepReport report;
+  report.stepIndex = stepCount_;
+  report.timeStep = h;
+  for (std::size_t i = 0; i < state_.size(); ++i) {
+    if (state_.isDynamic(i)) ++report.dynamicBodies;
+    if (state_.alive[i] != 0 && state_.motionTypes[i] == geometry::MotionType::Kinematic)
+      ++report.kinematicBodies;
+  }
+  step_.h = h;
+
+  quarantine_.begin(state_, articulations_);                         // last good state
+  integrators::predictFreeVelocities(state_, settings_.gravity, h);  // v*
+  articulations_.predictVelocities(settings_.gravity, h, state_);    // trees' v* (ABA)
+  guard("after the velocity prediction", report);                    // bad v*
+  detectContacts(h);  // manifolds, margins swept by v*; touched sleepers wake
+  buildIslands();     // edges of every row source -> islands with per-source item lists
+  step_.stabilized =  // heavy joint loads: the velocity solve's inertias (as data)
+      joints_.stabilizedInverseInertias(state_, h, step_.solveInverseInertias);
+  for (IslandWork& island : step_.work) {  // v* -> v+
+    emitRows(island);       // impacts (propagating law), then joint, contact and tree rows
+    solveIsland(island);    // W = J M^-1 J^T, q = J v*; the policy's plan; the outcome
+    applyImpulses(island);  // v+ = v* + M^-1 J^T r, qd+; each source keeps its impulses
+  }
+  joints_.correctDrift(state_, step_.activeJoints, settings_.jointStabilization, h,
+                       report.joints);           // predicted state
+  integrators::integratePositions(state_, h);    // x+ from v+
+  articulations_.integratePositions(h, state_);  // q+ from qd+; link proxies follow
+  correctPenetrations();                         // split impulse (positions only)
+  joints_.finishStep(state_, step_.activeJoints, h, report.joints);  // reactions, breakage
+  sleep_.update(step_.islands, state_, settings_.sleep, h);          // slow islands fall asleep
+  for (const IslandWork& island : step_.work) report.islands.push_back(islandReport(island));
+  guard("at the end of the step", report);  // non-finite or runaway bodies
+
+  state_.clearForces();
+  articulations_.clearForces();
+  report.collision = collision_.diagnostics().stats;
+  report.collisionFailures = collision_.diagnostics().failures;
+  report.sleepingBodies = sleep_.sleepingBodies(state_);
+  ++stepCount_;
+  time_ += h;
+  report.time = time_;
+  report.seconds = secondsSince(started);
+  return report;
+}
+
+RowContext World::rowContext() {
+  return RowContext{state_, step_.h, collision_.cache().manifolds(), settings_.contact,
+                    settings_.jointStabilization};
+}
+
+RowSource& World::rowSource(RowOwner owner) {
+  switch (owner) {
+    case kJointRows:
+      return joints_;
+    case kContactRows:
+      return contactRows_;
+    default:
+      return articulations_;
+  }
+}
+
+void World::detectContacts(double h) {
+  const geometry::SweepMotion sweep{state_.linearVelocities, state_.angularVelocities, h};
+  collision_.step(colliders_, state_.poses, sweep, [this](const auto& a, const auto& b) {
+    if (!articulations_.keepPair(a.body.index, b.body.index)) return false;
+    if (quarantine_.isolated(a.body.index) || quarantine_.isolated(b.body.index)) return false;
+    return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index) ||
+           articulations_.isLink(a.body.index) || articulations_.isLink(b.body.index);
+  });
+  sleep_.wakeTouched(collision_.cache().manifolds(), state_, settings_.gravity, h);
+}
+
+void World::buildIslands() {
+  const RowContext context = rowContext();
+  StepEdges& edges = step_.edges;
+  edges.clear();
+  contactRows_.appendEdges(kContactRows, context, edges);
+  joints_.appendEdges(kJointRows, context, edges);
+  articulations_.appendEdges(kTreeRows, context, edges);
+  articulations_.mapEdges(edges.edges);  // a tree is one unit (its root link's proxy)
+  step_.activeJoints.clear();
+  for (std::size_t e = 0; e < edges.edges.size(); ++e)
+    if (edges.owners[e] == kJointRows) step_.activeJoints.push_back(edges.items[e]);
+
+  step_.dynamicMask.resize(state_.size());
+  for (std::size_t i = 0; i < state_.size(); ++i) step_.dynamicMask[i] = state_.isDynamic(i);
+  articulations_.markIslandBodies(step_.dynamicMask);  // a tree counts once
+  step_.islands = islandBuilder_.build(step_.dynamicMask, edges.edges);
+
+  step_.work.resize(step_.islands.size());
+  for (std::size_t k = 0; k < step_.islands.size(); ++k) {
+    IslandWork& work = step_.work[k];
+    work.island = step_.islands[k];
+    for (std::vector<std::int32_t>& items : work.items) items.clear();
+    for (const std::int32_t e : work.island.constraints)
+      work.items[edges.owners[e]].push_back(edges.items[e]);
+    work.penetration.reset();
+    work.penetrationSeconds = 0.0;
+  }
+}
+
+void World::emitRows(IslandWork& island) {
+  const RowContext context = rowContext();
+  if (settings_.contact.impactLaw == ImpactLaw::Propagating)  // pairwise impacts change v* first
+    propagateImpacts(island.items[kContactRows], context.manifolds, settings_.contact, step_.h,
+                     state_);
+  island.rows.blocks.clear();
+  for (const RowOwner owner : {kJointRows, kContactRows, kTreeRows}) {
+    const std::size_t first = island.rows.blocks.size();
+    rowSource(owner).emitRows(island.items[owner], context, island.rows);
+    island.blocks[owner] = {first, island.rows.blocks.size() - first};
+  }
+}
+
+void World::solveIsland(IslandWork& island) {
+  island.assembled = ProblemAssembler(settings_.assembly)
+                         .assemble(island.rows, state_, &articulations_, step_.inverseInertias());
+  const solvers::ContactProblem& problem = island.assembled.problem;
+  if (problemObserver_) problemObserver_(island.island.id, problem);
+  // The island's choice: the override of its smallest body that has one, else the world's.
+  const std::optional<solvers::SolverChoice>& own = solverOverrides_[island.island.bodies.front()];
+  const solvers::SolverChoice& choice = own ? *own : settings_.solve.choice;
+  island.automaticPlan = choice.isAutomatic();
+  solvers::SolverChooser(settings_.solve.chooser)
+      .choose(problem, {island.assembled.degreesOfFreedom}, choice, settings_.solve.options,
+              island.plan);
+  if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
+  island.outcome = solvers::solveWithFallback(problem, island.plan, registry_, solvers_);
+  promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
+                    island.outcome);
+}
+
+void World::applyImpulses(IslandWork& island) {
+  const Eigen::VectorXd& r = island.outcome.best.impulses;
+  const std::vector<RowBlockSlot>& slots = island.assembled.slots;
+  engine::applyImpulses(island.rows, slots, r, state_, step_.inverseInertias());  // v+
+  articulations_.applyImpulses(island.rows, slots, r, state_);                    // qd+
+  const RowContext context = rowContext();
+  for (const RowOwner owner : {kJointRows, kContactRows, kTreeRows})
+    rowSource(owner).storeImpulses(island.rows, island.blocks[owner], slots, r, context);
+}
+
+void World::correctPenetrations() {
+  const solvers::ContactSolver* solver =
+      solvers_.get(settings_.contact.penetration.solver, registry_);
+  for (IslandWork& island : step_.work) {
+    if (solver == nullptr) break;  // validated at construction; a registry only grows
+    const auto started = std::chrono::steady_clock::now();
+    const joints::BlockRange contacts = island.blocks[kContactRows];
+    VelocityProblemNormals normals{island.assembled.problem.W, {}};
+    normals.normalRows.reserve(contacts.count);
+    for (std::size_t k = contacts.first; k < contacts.end(); ++k)
+      normals.normalRows.push_back(island.assembled.slots[k].offset);
+    island.penetration = correctPenetration(
+        island.rows.in(contacts), collision_.cache().manifolds(), settings_.contact.penetration,
+        step_.h, state_, *solver, &articulations_, &normals);
+    island.penetrationSeconds = secondsSince(started);
+  }
+}
+
+IslandReport World::islandReport(const IslandWork& island) const {
+  IslandReport report;
+  report.island = island.island.id;
+  report.bodies = island.island.bodies.size();
+  report.contacts = island.blocks[kContactRows].count;
+  report.unknowns = island.assembled.problem.size();
+  report.degreesOfFreedom = island.assembled.degreesOfFreedom;
+  report.plan = island.plan;
+  report.status = island.outcome.status;
+  report.solve = island.outcome.best.report;
+  report.attempts = island.outcome.attempts;
+  report.penetration = island.penetration;
+  report.penetrationSeconds = island.penetrationSeconds;
+  return report;
+}
+
+}  // namespace coulomb::engine
