@@ -58,6 +58,15 @@ std::vector<int> ContactProblem::blockOffsets() const {
 
 namespace {
 
+// A message from its parts: the stream is built only on the failure path (validate() runs on
+// every solve of every step).
+template <class... Parts>
+std::string say(const Parts&... parts) {
+  std::ostringstream s;
+  (s << ... << parts);
+  return s.str();
+}
+
 std::string where(const std::vector<ConstraintBlock>& blocks, const std::vector<int>& offset,
                   int row) {
   size_t b = 0;
@@ -76,22 +85,17 @@ std::string where(const std::vector<ConstraintBlock>& blocks, const std::vector<
 std::optional<std::string> ContactProblem::validate() const {
   const int n = size();
   const std::vector<int> offset = blockOffsets();
-  std::ostringstream msg;
   if (W.rows() != W.cols()) {
-    msg << "W is " << W.rows() << " x " << W.cols() << ", not square";
-    return msg.str();
+    return say("W is ", W.rows(), " x ", W.cols(), ", not square");
   }
   if (W.rows() != n) {
-    msg << "W is " << W.rows() << " x " << W.cols() << " but the blocks have " << n << " unknowns";
-    return msg.str();
+    return say("W is ", W.rows(), " x ", W.cols(), " but the blocks have ", n, " unknowns");
   }
   if (q.size() != n) {
-    msg << "q has " << q.size() << " entries, expected " << n;
-    return msg.str();
+    return say("q has ", q.size(), " entries, expected ", n);
   }
   if (warmStart && warmStart->size() != n) {
-    msg << "warm start has " << warmStart->size() << " entries, expected " << n;
-    return msg.str();
+    return say("warm start has ", warmStart->size(), " entries, expected ", n);
   }
   auto samePartition = [&](const std::vector<int>& sizes) {
     if (sizes.size() != blocks.size()) return false;
@@ -118,15 +122,13 @@ std::optional<std::string> ContactProblem::validate() const {
         if (t > 0 && !k.anisotropic) break;
         if (!std::isfinite(m[t])) return at().str() + ": " + names[t] + " is not finite";
         if (m[t] < 0) {
-          msg << at().str() << ": " << names[t] << " = " << m[t] << " < 0";
-          return msg.str();
+          return say(at().str(), ": ", names[t], " = ", m[t], " < 0");
         }
       }
     }
     if (k.kind == BlockKind::Bounded) {
       if (std::isnan(k.lower) || std::isnan(k.upper) || k.lower > k.upper) {
-        msg << at().str() << ": bounds [" << k.lower << ", " << k.upper << "] are not an interval";
-        return msg.str();
+        return say(at().str(), ": bounds [", k.lower, ", ", k.upper, "] are not an interval");
       }
     }
   }
@@ -169,8 +171,7 @@ std::optional<std::string> ContactProblem::validate() const {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
         if (!std::isfinite((*d)(i, j))) {
-          msg << "W(" << i << ", " << j << ") is not finite, at " << where(blocks, offset, i);
-          return msg.str();
+          return say("W(", i, ", ", j, ") is not finite, at ", where(blocks, offset, i));
         }
     for (int i = 0; i < n; ++i)
       if (auto e = diagonalOk(i, (*d)(i, i))) return e;
@@ -180,15 +181,13 @@ std::optional<std::string> ContactProblem::validate() const {
         const int c = s->blockColumn(k), sb = s->blockSize(b), sc = s->blockSize(c);
         for (int t = 0; t < sb * sc; ++t)
           if (!std::isfinite(s->blockValues(k)[t])) {
-            msg << "W(" << s->blockOffset(b) + t / sc << ", " << s->blockOffset(c) + t % sc
-                << ") is not finite, at " << where(blocks, offset, s->blockOffset(b) + t / sc);
-            return msg.str();
+            return say("W(", s->blockOffset(b) + t / sc, ", ", s->blockOffset(c) + t % sc,
+                       ") is not finite, at ", where(blocks, offset, s->blockOffset(b) + t / sc));
           }
       }
     for (int b = 0; b < s->blockCount(); ++b) {
       if (s->diagonalBlock(b) < 0) {
-        msg << "W has no diagonal block for block " << b;
-        return msg.str();
+        return say("W has no diagonal block for block ", b);
       }
       const double* v = s->blockValues(s->diagonalBlock(b));
       for (int a = 0; a < s->blockSize(b); ++a)
@@ -210,8 +209,7 @@ std::optional<std::string> ContactProblem::validate() const {
       const Eigen::VectorXd col = W.column(i);
       for (int r = 0; r < n; ++r)
         if (!std::isfinite(col[r])) {
-          msg << "W(" << r << ", " << i << ") is not finite, at " << where(blocks, offset, r);
-          return msg.str();
+          return say("W(", r, ", ", i, ") is not finite, at ", where(blocks, offset, r));
         }
       if (auto e = diagonalOk(i, col[i])) return e;
     }

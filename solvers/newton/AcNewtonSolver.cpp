@@ -138,12 +138,8 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
         << " improved on Newton's best and restarted it";
     report.note(msg.str());
   }
-  if (report.maxRegularization > 0) {
-    std::ostringstream msg;
-    msg << "J regularized by (5.8), sigma up to " << report.maxRegularization
-        << " (= " << report.maxRegularization / p.maxDiagonal << " max W_ii)";
-    report.note(msg.str());
-  }
+  // The regularization (5.8) is reported as a number (SolverReport::maxRegularization), not
+  // formatted into the message: this runs on most solves of a step.
   if (options_.proximalOnStall && report.status == SolverStatus::Stalled &&
       report.iterations < budget && !report.timeLimitReached)
     proximalLoop(p, function, options_, context, budget - report.iterations, r, report);

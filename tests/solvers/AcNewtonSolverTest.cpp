@@ -9,7 +9,7 @@ TEST(AcNewtonSolver, CorpusFixturesFewIterations) {
   const SolveOutcome out = AcNewtonSolver().solve(fixtures::loadFixture("OneObject-i1028-138"));
   EXPECT_EQ(out.report.status, SolverStatus::Converged);
   EXPECT_LE(out.report.iterations, 30);
-  EXPECT_NE(out.report.message.find("(5.8)"), std::string::npos);  // says it regularized
+  EXPECT_GT(out.report.maxRegularization, 0.0);  // says it regularized
 }
 
 TEST(AcNewtonSolver, OptionsVariantsConverge) {
