@@ -11,6 +11,8 @@ const char* planRuleName(PlanRule rule) {
       return "all q_N >= 0 and no equality or bounded rows: r = 0 is exact";
     case PlanRule::OneContact:
       return "one contact: bgs solves it exactly in one sweep";
+    case PlanRule::EqualityRowsOnly:
+      return "equality rows only: a sparse LDL^T solve, ac_newton as the fallback";
     case PlanRule::JointRowsOnly:
       return "joint rows only: ac_newton, Gauss-Seidel converges slowly";
     case PlanRule::LargeIsland:

@@ -45,6 +45,7 @@ struct SolveAttempt {
 enum class PlanRule : std::uint8_t {
   ZeroIsExact,        // every q_N >= 0, no equality or bounded rows: r = 0 is exact
   OneContact,         // one contact: bgs solves it exactly in one sweep
+  EqualityRowsOnly,   // joint rows without bounds: one sparse LDL^T solve (linear on trees)
   JointRowsOnly,      // no cone: Newton solves the linear system plus bounds in 1-3 steps
   LargeIsland,        // above ChooserSettings::newtonMaxUnknowns: Gauss-Seidel only
   MassRatio,          // kappa above ChooserSettings::newtonMassRatio: Newton first

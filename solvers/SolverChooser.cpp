@@ -122,6 +122,12 @@ void SolverChooser::automatic(const ProblemFeatures& f, SolvePlan& plan) const {
   }
   if (f.contacts == 1 && scalarRows == 0)  // Algorithm 4.1: exact in one sweep
     return set(PlanRule::OneContact, {{"bgs"}, {"ac_newton"}});
+  if (f.contacts == 0 && scalarRows == f.equalityRows && f.equalityRows > 0) {
+    // Bilateral rows only (a joint island without limits or motors): the problem is the linear
+    // system W r = -q; a sparse LDL^T solves it directly, in linear time when the joints form a
+    // tree (Baraff 1996). A loop makes W singular: ac_newton (regularized) takes over.
+    return set(PlanRule::EqualityRowsOnly, {{"ldlt"}, {"ac_newton"}, {"bgs"}});
+  }
   if (f.contacts == 0 && newtonSized) {
     // Joint rows only (equalities, limits, motors, joint friction): with no cone the problem is a
     // linear system plus a few bounds, which Newton solves in 1-3 steps, while Gauss-Seidel

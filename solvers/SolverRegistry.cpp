@@ -1,6 +1,7 @@
 #include <coulomb/solvers/SolverRegistry.hpp>
 
 #include <coulomb/solvers/bgs/BgsSolver.hpp>
+#include <coulomb/solvers/direct/EqualityLdltSolver.hpp>
 #include <coulomb/solvers/lemke/LemkeSolver.hpp>
 #include <coulomb/solvers/newton/AcNewtonSolver.hpp>
 #include <coulomb/solvers/newton/FbNewtonSolver.hpp>
@@ -33,6 +34,10 @@ SolverRegistry SolverRegistry::builtIn() {
          "Fischer-Burmeister nonsmooth Newton for second-order cones, cancellation-free "
          "eigenvalue, Armijo search, shared Newton loop (SOLVERS.md 6)",
          [] { return std::make_unique<FbNewtonSolver>(); }});
+  r.add({"ldlt",
+         "equality rows only (joint islands without limits or contacts): W r = -q by sparse "
+         "LDL^T, linear time on trees (Baraff 1996); not applicable otherwise",
+         [] { return std::make_unique<EqualityLdltSolver>(); }});
   r.add({"lemke",
          "Lemke pivoting on the faceted-cone LCP (8 directions, Stewart-Trinkle slack rows), "
          "lexicographic anti-cycling (SOLVERS.md 7)",

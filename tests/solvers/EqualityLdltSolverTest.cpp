@@ -1,0 +1,80 @@
+// solvers/direct/EqualityLdltSolver: equality-only problems solved by one sparse LDL^T.
+#include <gtest/gtest.h>
+#include <coulomb/solvers/SolveWithFallback.hpp>
+#include <coulomb/solvers/SolverChooser.hpp>
+#include <coulomb/solvers/direct/EqualityLdltSolver.hpp>
+
+#include <Eigen/Cholesky>
+
+using namespace coulomb::solvers;
+
+namespace {
+
+// The W of a chain of n unit point masses joined by scalar rows: tridiagonal, 2 on the diagonal,
+// -1 beside it (a tree: no fill-in), every row an equality.
+ContactProblem chainProblem(int n, bool dense) {
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    W(i, i) = 2.0;
+    if (i + 1 < n) W(i, i + 1) = W(i + 1, i) = -1.0;
+  }
+  ContactProblem p;
+  p.name = "chain";
+  p.q = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  p.blocks.assign(n, ConstraintBlock::equality());
+  if (dense) {
+    p.W = DelassusOperator::dense(W);
+  } else {
+    std::vector<MatrixBlockEntry> entries;
+    for (int i = 0; i < n; ++i)
+      for (int j = std::max(0, i - 1); j <= std::min(n - 1, i + 1); ++j)
+        entries.push_back({i, j, {W(i, j)}});
+    p.W = DelassusOperator::blockSparse(BlockSparseMatrix(std::vector<int>(n, 1), entries));
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST(EqualityLdltSolver, SolvesTheLinearSystemInOneStep) {
+  for (const bool dense : {true, false}) {
+    const ContactProblem p = chainProblem(200, dense);
+    const SolveOutcome out = EqualityLdltSolver().solve(p, {});
+    EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+    EXPECT_EQ(out.report.iterations, 1);
+    EXPECT_LT(out.report.residual, 1e-12);
+    // u = W r + q = 0 for every row, against a dense reference solve.
+    const Eigen::MatrixXd W = p.W.toBlockSparse(p.blockSizes()).toDense();
+    const Eigen::VectorXd reference = W.ldlt().solve(-p.q);
+    EXPECT_LT((out.impulses - reference).norm(), 1e-9 * reference.norm());
+    EXPECT_LT(out.velocities.norm(), 1e-9);
+  }
+}
+
+TEST(EqualityLdltSolver, OnlyEqualityRows) {
+  ContactProblem p = chainProblem(3, true);
+  p.blocks[1] = ConstraintBlock::unilateral();
+  const SolveOutcome out = EqualityLdltSolver().solve(p, {});
+  EXPECT_EQ(out.report.status, SolverStatus::NotApplicable);
+  EXPECT_NE(out.report.message.find("equality rows only"), std::string::npos);
+}
+
+TEST(EqualityLdltSolver, ARedundantRowFallsBackToNewton) {
+  // Two identical rows (a loop closed twice): W singular, r not unique; q consistent.
+  Eigen::MatrixXd W(3, 3);
+  W << 2, 2, -1, 2, 2, -1, -1, -1, 2;
+  ContactProblem p;
+  p.W = DelassusOperator::dense(W);
+  p.q = Eigen::Vector3d(1.0, 1.0, -0.5);
+  p.blocks.assign(3, ConstraintBlock::equality());
+  const SolvePlan plan =
+      SolverChooser().choose(p, {}, SolverChoice::automatic(), SolvePolicy::simulationOptions());
+  EXPECT_EQ(plan.rule, PlanRule::EqualityRowsOnly);
+  ASSERT_GE(plan.attempts.size(), 2u);
+  EXPECT_EQ(plan.attempts[0].solver, "ldlt");
+  EXPECT_EQ(plan.attempts[1].solver, "ac_newton");
+  const PlanOutcome out = solveWithFallback(p, plan, SolverRegistry::builtIn());
+  EXPECT_TRUE(out.converged()) << out.best.report.message;
+  EXPECT_LE(out.best.report.residual, 1e-6);
+  EXPECT_TRUE(out.best.impulses.allFinite());
+}
