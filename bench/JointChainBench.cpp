@@ -1,7 +1,7 @@
-// Maximal-coordinate chains (SCENES.md A6: capsule links 0.1 m, 0.1 kg, ball joints, released
-// horizontal): ms per step and joint error for 50 and 200 links, per solver and per
+// Maximal-coordinate chains (docs/conformance.md A6: capsule links 0.1 m, 0.1 kg, ball joints,
+// released horizontal): ms per step and joint error for 50 and 200 links, per solver and per
 // stabilization policy, at dt 0.01 and 0.002. One benchmark iteration = one step; a run is
-// exactly 10 s of simulated time, so the counters are the SCENES.md A6 metrics:
+// exactly 10 s of simulated time, so the counters are the docs/conformance.md A6 metrics:
 //   max_gap     largest anchor separation over all steps and joints [m]
 //   drift_end   (E(T) - E0) / S, S = m g L N^2 / 2 (the energy released when hanging straight)
 //   corr_iters  mean predicted-state correction solves per step

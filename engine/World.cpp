@@ -11,8 +11,11 @@ using geometry::BodyId;
 
 namespace {
 
-void checkKnown(const solvers::SolverRegistry& registry, const solvers::SolverChoice& choice,
-                const std::string& who) {
+// A body's own choice: not empty unless automatic, every solver in the registry.
+void checkChoice(const solvers::SolverRegistry& registry, const solvers::SolverChoice& choice,
+                 const std::string& who) {
+  if (choice.mode != solvers::ChoiceMode::Automatic && choice.attempts.empty())
+    throw CoulombError(who + "empty solver choice");
   if (auto unknown = solvers::unknownSolver(choice, registry))
     throw CoulombError(who + "unknown solver '" + *unknown + "' (see `coulomb solvers`)");
 }
@@ -44,21 +47,13 @@ void World::setSolvePolicy(const solvers::SolvePolicy& policy) {
 
 void World::setSolverOverride(BodyId id, std::optional<solvers::SolverChoice> choice) {
   const std::size_t i = slotOf(id);
-  if (choice) {
-    if (choice->mode != solvers::ChoiceMode::Automatic && choice->attempts.empty())
-      throw CoulombError("setSolverOverride: body '" + names_[i] + "': empty solver choice");
-    checkKnown(registry_, *choice, "setSolverOverride: body '" + names_[i] + "': ");
-  }
+  if (choice) checkChoice(registry_, *choice, "setSolverOverride: body '" + names_[i] + "': ");
   solverOverrides_[i] = std::move(choice);
 }
 
 BodyId World::createBody(const BodyDesc& desc) {
   ResolvedBody body = resolveBody(desc, settings_);  // throws before anything is changed
-  if (desc.solver) {
-    if (desc.solver->mode != solvers::ChoiceMode::Automatic && desc.solver->attempts.empty())
-      throw CoulombError("body '" + desc.name + "': empty solver choice");
-    checkKnown(registry_, *desc.solver, "body '" + desc.name + "': ");
-  }
+  if (desc.solver) checkChoice(registry_, *desc.solver, "body '" + desc.name + "': ");
   std::size_t slot = state_.size();
   if (!freeSlots_.empty()) {
     const auto lowest = std::min_element(freeSlots_.begin(), freeSlots_.end());

@@ -1,10 +1,10 @@
 // Bullet (Debian's libbullet-dev 3.24, single precision) as a user sets it up: a
 // btDiscreteDynamicsWorld with btDbvtBroadphase and btSequentialImpulseConstraintSolver, all
 // solver settings at their defaults, one stepSimulation(dt, 0) per step (exactly one internal
-// step of dt, no sub-stepping, no interpolation). SCENES.md section 0 changes three things:
-// explicit inertias, no deactivation, and the friction/restitution combine rule min instead of
-// Bullet's product (which would give mu^2), set through the contact-added callback as the
-// peers' harness did.
+// step of dt, no sub-stepping, no interpolation). docs/benchmarks.md "Peers in the same run"
+// changes three things: explicit inertias, no deactivation, and the friction/restitution combine
+// rule min instead of Bullet's product (which would give mu^2), set through the contact-added
+// callback as the peers' harness did.
 #include "PeerEngine.hpp"
 
 #include <coulomb/engine/CoulombError.hpp>

@@ -1,10 +1,12 @@
-// Coulomb's default against Bullet and ODE on the SCENES.md part A scenes, in one process run
-// (issue 12 item 3; docs/benchmarks.md "Peers in the same run").
+// Coulomb's default against Bullet and ODE on the conformance scenes of part A
+// (docs/conformance.md), in one process run (issue 12 item 3; docs/benchmarks.md "Peers in the same
+// run").
 //   PeerComparison [--scenes a,b] [--engines coulomb,bullet,ode_quickstep,ode_step]
 //                  [--time-cap S] [--csv FILE] [--markdown FILE]
 // Every step is timed alone (steady clock; collision + solve + integration, reading the state
 // excluded); ms/step is the median after min(20, steps/10) warm-up steps. A run stops when its
-// summed step time passes the cap or a body leaves |x| <= 1000 m, |v| <= 1000 m/s (SCENES.md 0).
+// summed step time passes the cap or a body leaves |x| <= 1000 m, |v| <= 1000 m/s
+// (docs/benchmarks.md "Peers in the same run").
 #include "CommaList.hpp"
 #include "PeerEngine.hpp"
 #include "PeerMetrics.hpp"
@@ -224,8 +226,8 @@ int main(int argc, char** argv) {
   for (const std::string& name : scenes) {
     try {
       const PeerScene scene = loadPeerScene(name);
-      // SCENES.md 0: a run reaching < 10 % of its duration skips the larger sizes of that
-      // scene family (pyramid_10 -> pyramid_20) for that engine.
+      // docs/benchmarks.md "Peers in the same run": a run reaching < 10 % of its duration skips the
+      // larger sizes of that scene family (pyramid_10 -> pyramid_20) for that engine.
       const std::string family = name.substr(0, name.find_last_of('_'));
       for (const std::string& n : names) {
         const auto& [label, make] = engines().at(n);

@@ -1,6 +1,6 @@
 #pragma once
-// The metrics of SCENES.md part A, computed the same way for every engine from the sampled
-// states (sample k at t = k dt, k = 0 is the state after building).
+// The metrics of docs/conformance.md part A, computed the same way for every engine from the
+// sampled states (sample k at t = k dt, k = 0 is the state after building).
 #include "PeerEngine.hpp"
 
 #include <string>
@@ -15,7 +15,7 @@ struct Metric {
 
 using Trajectory = std::vector<std::vector<BodySample>>;
 
-/// The scene's metrics (SCENES.md A2-A7; the stacks also get `max_disp`, the largest COM
+/// The scene's metrics (docs/conformance.md A2-A7; the stacks also get `max_disp`, the largest COM
 /// displacement of any body, as the drift of bodies that should rest). Samples missing because a
 /// run stopped early give NaN where the metric needs them.
 std::vector<Metric> sceneMetrics(const PeerScene& scene, const Trajectory& samples);

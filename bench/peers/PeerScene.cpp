@@ -69,7 +69,8 @@ PeerScene loadPeerScene(std::string_view name) {
     body.linearVelocity = desc.linearVelocity;
     body.angularVelocity = desc.angularVelocity;
     if (!body.isStatic) {
-      // SCENES.md section 0: inertia is set explicitly, never recomputed from the shape.
+      // docs/benchmarks.md "Peers in the same run": inertia is set explicitly, never recomputed
+      // from the shape.
       if (!desc.mass) unsupported(scene, where, "no explicit mass and inertia");
       const geometry::SpatialInertia& m = *desc.mass;
       if (m.centerOfMass.norm() != 0.0) unsupported(scene, where, "COM offset");

@@ -2,7 +2,7 @@
 // One scene description shared by the peer adapters (issue 12 item 3): a plain list of bodies
 // with one primitive shape each, explicit mass and principal inertia, one material, and ball
 // joints. It is made from Coulomb's built-in scene (samples/scenes/*.json, written after
-// SCENES.md part A), so every engine builds exactly the same scene from one source.
+// docs/conformance.md part A), so every engine builds exactly the same scene from one source.
 #include <coulomb/engine/io/SceneLoader.hpp>
 
 #include <Eigen/Geometry>

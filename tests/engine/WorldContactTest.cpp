@@ -122,4 +122,10 @@ TEST(WorldContact, UnknownSolverIsRejected) {
   EXPECT_THROW(engine::World world(settings), engine::CoulombError);
   engine::World world;
   EXPECT_THROW(world.setSolver(coulomb::solvers::solverChoice("nope")), engine::CoulombError);
+  // A bad policy is refused whole and leaves the world's as it was.
+  coulomb::solvers::SolvePolicy bad = world.settings().solve;
+  bad.options.tolerance = -1.0;
+  EXPECT_THROW(world.setSolvePolicy(bad), engine::CoulombError);
+  EXPECT_EQ(world.settings().solve.options.tolerance,
+            engine::WorldSettings{}.solve.options.tolerance);
 }
