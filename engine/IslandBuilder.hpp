@@ -30,11 +30,17 @@ class IslandBuilder {
   /// (they move freely; nothing to solve for them).
   std::vector<Island> build(std::span<const std::uint8_t> isDynamic,
                             std::span<const ConstraintEdge> edges);
+  /// The same into `islands`, whose vectors are reused: no allocation while the islands keep
+  /// their count and sizes (a steady step).
+  void build(std::span<const std::uint8_t> isDynamic, std::span<const ConstraintEdge> edges,
+             std::vector<Island>& islands);
 
  private:
   std::int32_t find(std::int32_t body);
   void unite(std::int32_t a, std::int32_t b);
   std::vector<std::int32_t> parent_;  // union-find forest, reused between steps
+  std::vector<std::int32_t> edgeRoot_, islandOfRoot_;
+  std::vector<std::uint8_t> rootHasEdge_;
 };
 
 }  // namespace coulomb::engine

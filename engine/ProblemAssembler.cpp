@@ -11,32 +11,26 @@
 namespace coulomb::engine {
 namespace {
 
-using Matrix6k = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
-using BlockMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, 6, 6>;
+using Matrix6k = AssemblyScratch::Matrix6k;
+using BlockMatrix = AssemblyScratch::BlockMatrix;
 // BodySpaceDelassus::setSide reads these layouts raw: J rows of 6, M^-1 J^T columns of 6.
 static_assert(joints::RowJacobian::IsRowMajor && joints::RowJacobian::ColsAtCompileTime == 6);
 static_assert(!Matrix6k::IsRowMajor && Matrix6k::RowsAtCompileTime == 6);
 
-// One side of a row block on a dynamic body. Sorted: grouped by body, block order inside.
-struct Touch {
-  std::uint32_t body = 0;
-  int block = 0;
-  bool sideB = false;
-  auto operator<=>(const Touch&) const = default;
-};
+using Touch = AssemblyTouch;  // grouped by body, block order inside
 
 bool carriesUnknowns(const geometry::BodyState& state, const geometry::BodyId& body) {
   return body.valid() && body.index < state.size() && state.isDynamic(body.index);
 }
 
 /// M_b^-1 J^T for one side of a block: (m^-1 J_lin^T ; I_world^-1 J_ang^T), 6 x k.
-Matrix6k inverseMassTimesJacobianT(const geometry::BodyState& state,
-                                   const std::vector<Eigen::Matrix3d>& inverseInertias,
-                                   std::uint32_t body, const joints::RowJacobian& jacobian) {
-  Matrix6k out(6, jacobian.rows());
+void inverseMassTimesJacobianT(const geometry::BodyState& state,
+                               const std::vector<Eigen::Matrix3d>& inverseInertias,
+                               std::uint32_t body, const joints::RowJacobian& jacobian,
+                               Matrix6k& out) {
+  out.resize(6, jacobian.rows());
   out.topRows<3>() = state.inverseMasses[body] * jacobian.leftCols<3>().transpose();
   out.bottomRows<3>() = inverseInertias[body] * jacobian.rightCols<3>().transpose();
-  return out;
 }
 
 void appendSolverBlocks(const joints::RowBlock& block, std::vector<solvers::ConstraintBlock>& out) {
@@ -62,8 +56,15 @@ void appendSolverBlocks(const joints::RowBlock& block, std::vector<solvers::Cons
 // any other row its own 1-row block), filled row block by row block in increasing order.
 class SparseRowsBuilder {
  public:
-  SparseRowsBuilder(const joints::RowSet& rows, int blockCount) : rows_(rows) {
+  SparseRowsBuilder(const joints::RowSet& rows, int blockCount, AssemblyScratch& scratch)
+      : rows_(rows),
+        firstSolverBlock_(scratch.firstSolverBlock),
+        blockSizes_(scratch.csrBlockSizes),
+        rowStart_(scratch.rowStart),
+        blockColumns_(scratch.blockColumns),
+        values_(scratch.values) {
     firstSolverBlock_.resize(blockCount);
+    blockSizes_.clear();
     for (int k = 0; k < blockCount; ++k) {
       firstSolverBlock_[k] = static_cast<int>(blockSizes_.size());
       if (isContact(k))
@@ -71,8 +72,9 @@ class SparseRowsBuilder {
       else
         blockSizes_.insert(blockSizes_.end(), rows.blocks[k].rows(), 1);
     }
-    rowStart_.reserve(blockSizes_.size() + 1);
-    rowStart_.push_back(0);
+    rowStart_.assign(1, 0);
+    blockColumns_.clear();
+    values_.clear();
   }
 
   // The nonzero blocks (k, columns[c]) = strip[c] of row block k, columns ascending.
@@ -97,9 +99,8 @@ class SparseRowsBuilder {
     }
   }
 
-  solvers::BlockSparseMatrix build() {
-    return solvers::BlockSparseMatrix::fromBlockCsr(std::move(blockSizes_), std::move(rowStart_),
-                                                    std::move(blockColumns_), std::move(values_));
+  void build(solvers::BlockSparseMatrix& out) const {
+    out.assignBlockCsr(blockSizes_, rowStart_, blockColumns_, values_);
   }
 
  private:
@@ -107,9 +108,16 @@ class SparseRowsBuilder {
     return rows_.blocks[k].kind == joints::RowKind::Contact3D;
   }
   const joints::RowSet& rows_;
-  std::vector<int> firstSolverBlock_, blockSizes_, rowStart_, blockColumns_;
-  std::vector<double> values_;
+  std::vector<int>&firstSolverBlock_, &blockSizes_, &rowStart_, &blockColumns_;
+  std::vector<double>& values_;
 };
+
+// `kept` when no operator shares it any more (refilled in place), else a fresh one.
+template <class T>
+T& reusable(std::shared_ptr<T>& kept) {
+  if (!kept || kept.use_count() > 1) kept = std::make_shared<T>();
+  return *kept;
+}
 
 }  // namespace
 
@@ -117,13 +125,24 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
                                             const geometry::BodyState& state,
                                             const ArticulationStage* articulations,
                                             const InverseInertias* inverseInertias) const {
+  AssembledProblem out;
+  assemble(rows, state, articulations, inverseInertias, out);
+  return out;
+}
+
+void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::BodyState& state,
+                                const ArticulationStage* articulations,
+                                const InverseInertias* inverseInertias,
+                                AssembledProblem& out) const {
   const InverseInertias& inertias =
       inverseInertias != nullptr ? *inverseInertias : state.worldInverseInertias;
-  AssembledProblem out;
+  AssemblyScratch& scratch = out.scratch;
+  out.problem.W = solvers::DelassusOperator();  // releases last step's W for reuse
+  out.problem.name.clear();
   const auto blockCount = static_cast<int>(rows.blocks.size());
   out.slots.resize(blockCount);
-  std::vector<solvers::ConstraintBlock> solverBlocks;
-  solverBlocks.reserve(blockCount);
+  std::vector<solvers::ConstraintBlock>& solverBlocks = out.problem.blocks;
+  solverBlocks.clear();
   int size = 0;
   for (int k = 0; k < blockCount; ++k) {
     out.slots[k] = {size, rows.blocks[k].rows()};
@@ -133,10 +152,12 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
 
   // q = J v* + bias (kinematic bodies contribute their prescribed velocity, static ones zero),
   // and the (block, side) pairs on dynamic bodies with their M_b^-1 J^T.
-  Eigen::VectorXd q(size);
-  std::vector<Touch> touches;
-  touches.reserve(2 * blockCount);
-  std::vector<Matrix6k> minvJt(2 * blockCount);
+  Eigen::VectorXd& q = out.problem.q;
+  q.resize(size);
+  std::vector<Touch>& touches = scratch.touches;
+  touches.clear();
+  std::vector<Matrix6k>& minvJt = scratch.minvJt;
+  minvJt.resize(2 * blockCount);
   for (int k = 0; k < blockCount; ++k) {
     const joints::RowBlock& block = rows.blocks[k];
     joints::RowVector u = block.bias;
@@ -148,22 +169,26 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
            jac.rightCols<3>() * state.angularVelocities[body.index];
       if (!carriesUnknowns(state, body)) continue;
       touches.push_back({body.index, k, sideB});
-      minvJt[2 * k + (sideB ? 1 : 0)] = inverseMassTimesJacobianT(state, inertias, body.index, jac);
+      inverseMassTimesJacobianT(state, inertias, body.index, jac, minvJt[2 * k + (sideB ? 1 : 0)]);
     }
     q.segment(out.slots[k].offset, out.slots[k].rows) = u;
   }
   // Grouped by body, in block order inside a body (deterministic): a stable counting sort by
   // body gives std::sort's order, as the touches were appended in (block, side) order.
   {
-    std::vector<int> next(state.size() + 1, 0);
+    std::vector<int>& next = scratch.next;
+    next.assign(state.size() + 1, 0);
     for (const Touch& t : touches) ++next[t.body + 1];
     for (std::size_t b = 1; b < next.size(); ++b) next[b] += next[b - 1];
-    std::vector<Touch> sorted(touches.size());
+    std::vector<Touch>& sorted = scratch.sorted;
+    sorted.resize(touches.size());
     for (const Touch& t : touches) sorted[next[t.body]++] = t;
     touches.swap(sorted);
   }
-  std::vector<int> groupOfSide(2 * blockCount, -1);  // (block, side) -> its body's group
-  std::vector<int> groupStart;
+  std::vector<int>& groupOfSide = scratch.groupOfSide;  // (block, side) -> its body's group
+  groupOfSide.assign(2 * blockCount, -1);
+  std::vector<int>& groupStart = scratch.groupStart;
+  groupStart.clear();
   for (int t = 0; t < static_cast<int>(touches.size()); ++t) {
     if (t == 0 || touches[t].body != touches[t - 1].body) groupStart.push_back(t);
     groupOfSide[2 * touches[t].block + (touches[t].sideB ? 1 : 0)] =
@@ -177,23 +202,29 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
   if (articulations != nullptr)
     out.degreesOfFreedom += articulations->addDelassusBlocks(rows, state, treeBlocks);
 
-  out.problem.q = std::move(q);
-  out.problem.blocks = std::move(solverBlocks);
   bool allWarm = blockCount > 0;
   for (const joints::RowBlock& b : rows.blocks) allWarm = allWarm && b.warmStart.size() == b.rows();
   if (allWarm) {
-    Eigen::VectorXd warm(size);
+    if (!out.problem.warmStart) out.problem.warmStart.emplace();
+    Eigen::VectorXd& warm = *out.problem.warmStart;
+    warm.resize(size);
     for (int k = 0; k < blockCount; ++k)
       warm.segment(out.slots[k].offset, out.slots[k].rows) = rows.blocks[k].warmStart;
-    out.problem.warmStart = std::move(warm);
+  } else {
+    out.problem.warmStart.reset();
   }
 
   const bool dense = size <= settings_.denseRowLimit;
   if (!dense && treeBlocks.empty() && settings_.bodySpace) {
     // Large islands of free bodies: W stays factored (J, M^-1 J^T per side; BodySpaceDelassus),
     // O(rows) to build; Gauss-Seidel never forms W, other solvers build it once on demand.
-    auto factors = std::make_shared<solvers::BodySpaceDelassus>(
-        static_cast<int>(groupStart.size()) - 1, out.problem.blockSizes());
+    std::vector<int>& sizes = scratch.blockSizes;
+    sizes.clear();
+    for (const solvers::ConstraintBlock& b : out.problem.blocks) sizes.push_back(b.size());
+    if (!scratch.bodySpace || scratch.bodySpace.use_count() > 1)
+      scratch.bodySpace = std::make_shared<solvers::BodySpaceDelassus>(0, std::vector<int>{});
+    solvers::BodySpaceDelassus* factors = scratch.bodySpace.get();
+    factors->reset(static_cast<int>(groupStart.size()) - 1, sizes);
     int solverBlock = 0;
     for (int k = 0; k < blockCount; ++k) {
       const joints::RowBlock& bk = rows.blocks[k];
@@ -210,17 +241,18 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
                            minvJt[2 * k + side].data() + 6 * height * part);
         }
     }
-    out.problem.W = solvers::DelassusOperator::bodySpace(std::move(factors));
-    return out;
+    out.problem.W = solvers::DelassusOperator::bodySpace(scratch.bodySpace);
+    return;
   }
 
   // W_kj = sum over the bodies b shared by blocks k and j (in increasing body index) of
   // J_k,b M_b^-1 J_j,b^T, plus the trees' part; built row block by row block, columns ascending.
-  Eigen::MatrixXd denseW;
+  Eigen::MatrixXd dummy;
+  Eigen::MatrixXd& denseW = dense ? reusable(scratch.dense) : dummy;
   if (dense) denseW.setZero(size, size);
-  SparseRowsBuilder sparse(rows, blockCount);
-  std::vector<int> columns;
-  std::vector<BlockMatrix> strip;
+  SparseRowsBuilder sparse(rows, blockCount, scratch);
+  std::vector<int>& columns = scratch.columns;
+  std::vector<BlockMatrix>& strip = scratch.strip;
   auto tree = treeBlocks.begin();
   for (int k = 0; k < blockCount; ++k) {
     const joints::RowBlock& bk = rows.blocks[k];
@@ -261,9 +293,12 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
     if (!dense) sparse.addRowBlock(k, columns, strip);
   }
 
-  out.problem.W = dense ? solvers::DelassusOperator::dense(std::move(denseW))
-                        : solvers::DelassusOperator::blockSparse(sparse.build());
-  return out;
+  if (dense) {
+    out.problem.W = solvers::DelassusOperator::dense(scratch.dense);
+  } else {
+    sparse.build(reusable(scratch.sparse));
+    out.problem.W = solvers::DelassusOperator::blockSparse(scratch.sparse);
+  }
 }
 
 }  // namespace coulomb::engine

@@ -7,6 +7,9 @@
 #include <coulomb/joints/RowSet.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
 
+#include <Eigen/Core>
+
+#include <memory>
 #include <vector>
 
 namespace coulomb::engine {
@@ -29,10 +32,35 @@ struct RowBlockSlot {
   int rows = 0;
 };
 
+/// One side of a row block on a dynamic body (the assembler's bookkeeping).
+struct AssemblyTouch {
+  std::uint32_t body = 0;
+  int block = 0;
+  bool sideB = false;
+};
+
+/// What assemble() needs between its passes, kept with the problem so that assembling an island
+/// of the same shape again reuses every buffer: a steady step allocates nothing here. W's storage
+/// is reused only when no copy of the last problem still shares it.
+struct AssemblyScratch {
+  using Matrix6k = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
+  using BlockMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, 6, 6>;
+  std::vector<AssemblyTouch> touches, sorted;
+  std::vector<Matrix6k> minvJt;  // M^-1 J^T per (block, side)
+  std::vector<int> next, groupOfSide, groupStart, columns, blockSizes;
+  std::vector<BlockMatrix> strip;
+  std::vector<int> firstSolverBlock, csrBlockSizes, rowStart, blockColumns;
+  std::vector<double> values;
+  std::shared_ptr<Eigen::MatrixXd> dense;
+  std::shared_ptr<solvers::BlockSparseMatrix> sparse;
+  std::shared_ptr<solvers::BodySpaceDelassus> bodySpace;
+};
+
 struct AssembledProblem {
   solvers::ContactProblem problem;
   std::vector<RowBlockSlot> slots;  // one per RowSet block, in order
   int degreesOfFreedom = 0;         // 6 x (dynamic bodies touched), the m of nu = 3n/m
+  AssemblyScratch scratch;
 };
 
 /// World inverse inertias, one per body slot: the velocity problem's may differ from the bodies'
@@ -51,6 +79,10 @@ class ProblemAssembler {
                                           const geometry::BodyState& state,
                                           const ArticulationStage* articulations = nullptr,
                                           const InverseInertias* inverseInertias = nullptr) const;
+  /// The same into `out`, reusing its storage (the World's per-island problems).
+  void assemble(const joints::RowSet& rows, const geometry::BodyState& state,
+                const ArticulationStage* articulations, const InverseInertias* inverseInertias,
+                AssembledProblem& out) const;
   [[nodiscard]] const AssemblySettings& settings() const { return settings_; }
 
  private:

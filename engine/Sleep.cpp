@@ -40,7 +40,8 @@ std::size_t Sleep::wakeTouched(const std::vector<geometry::ContactManifold>& man
                                geometry::BodyState& state, const Eigen::Vector3d& gravity,
                                double h) {
   resize(state.size());
-  std::vector<std::uint8_t> wasAsleep(state.asleep);
+  std::vector<std::uint8_t>& wasAsleep = wasAsleep_;
+  wasAsleep.assign(state.asleep.begin(), state.asleep.end());
   for (const geometry::ContactManifold& m : manifolds) {
     const std::uint32_t a = m.bodyA.index, b = m.bodyB.index;
     if (a >= state.size() || b >= state.size()) continue;

@@ -54,6 +54,7 @@ class Sleep {
   void resize(std::size_t n);
   std::vector<double> slowFor_;      // [s] per body: how long it has been slow
   std::vector<std::int32_t> group_;  // per sleeping body: the island (smallest body) it slept with
+  std::vector<std::uint8_t> wasAsleep_;  // wakeTouched(): asleep before this step's contacts
 };
 
 }  // namespace coulomb::engine

@@ -5,6 +5,7 @@
 // nothing set aside elsewhere; World keeps one StepData and reuses it, so its vectors keep their
 // capacity from step to step.
 #include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/RowSource.hpp>
 #include <coulomb/joints/RowSet.hpp>
@@ -51,6 +52,7 @@ struct StepData {
   // (JointStage::stabilizedInverseInertias); unused when `stabilized` is false.
   bool stabilized = false;
   InverseInertias solveInverseInertias;
+  VelocityProblemNormals penetrationNormals;  // the split impulse's view of an island's W
 
   [[nodiscard]] const InverseInertias* inverseInertias() const {
     return stabilized ? &solveInverseInertias : nullptr;

@@ -77,9 +77,13 @@ class World {
   /// Changes the target of motor `motor` (ArticulationDesc::motors order); CoulombError if absent.
   void setJointMotorTarget(geometry::ArticulationId id, int motor, double target);
 
-  /// Advances by h [s] (finite, > 0; else CoulombError) or by settings().timeStep.
-  StepReport step(double h);
-  StepReport step() { return step(settings_.timeStep); }
+  /// Advances by h [s] (finite, > 0; else CoulombError) or by settings().timeStep. The report
+  /// is the World's own and is overwritten by the next step (copy it to keep it): one report
+  /// reused, so a steady step allocates nothing.
+  const StepReport& step(double h);
+  const StepReport& step() { return step(settings_.timeStep); }
+  /// The report of the last step (empty before the first).
+  [[nodiscard]] const StepReport& lastReport() const { return report_; }
 
   [[nodiscard]] const geometry::BodyState& state() const { return state_; }
   [[nodiscard]] const std::vector<geometry::Collider>& colliders() const { return colliders_; }
@@ -154,7 +158,8 @@ class World {
   void solveIsland(IslandWork& island);
   void applyImpulses(IslandWork& island);
   void correctPenetrations();
-  [[nodiscard]] IslandReport islandReport(const IslandWork& island) const;
+  void fillIslandReport(const IslandWork& island, IslandReport& report) const;
+  void resetReport(double h);
   [[nodiscard]] RowContext rowContext();
   [[nodiscard]] RowSource& rowSource(RowOwner owner);
   std::size_t slotOf(geometry::BodyId id) const;  // throws for a stale id
@@ -179,6 +184,7 @@ class World {
   solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
   solvers::SolverInstances solvers_;  // each registry solver created once, reused every step
   StepData step_;                     // this step's data; kept for its capacity
+  StepReport report_;                 // the last step's report; kept for its capacity
   ProblemObserver problemObserver_;
   double time_ = 0.0;
   std::uint64_t stepCount_ = 0;

@@ -23,13 +23,12 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-StepReport World::step(double h) {
+const StepReport& World::step(double h) {
   if (!std::isfinite(h) || h <= 0.0)
     throw CoulombError("step: h must be finite and > 0 s (got " + std::to_string(h) + ")");
   const auto started = std::chrono::steady_clock::now();
-  StepReport report;
-  report.stepIndex = stepCount_;
-  report.timeStep = h;
+  resetReport(h);
+  StepReport& report = report_;
   for (std::size_t i = 0; i < state_.size(); ++i) {
     if (state_.isDynamic(i)) ++report.dynamicBodies;
     if (state_.alive[i] != 0 && state_.motionTypes[i] == geometry::MotionType::Kinematic)
@@ -57,13 +56,16 @@ StepReport World::step(double h) {
   correctPenetrations();                         // split impulse (positions only)
   joints_.finishStep(state_, step_.activeJoints, h, report.joints);  // reactions, breakage
   sleep_.update(step_.islands, state_, settings_.sleep, h);          // slow islands fall asleep
-  for (const IslandWork& island : step_.work) report.islands.push_back(islandReport(island));
+  report.islands.resize(step_.work.size());
+  for (std::size_t k = 0; k < step_.work.size(); ++k)
+    fillIslandReport(step_.work[k], report.islands[k]);
   guard("at the end of the step", report);  // non-finite or runaway bodies
 
   state_.clearForces();
   articulations_.clearForces();
   report.collision = collision_.diagnostics().stats;
-  report.collisionFailures = collision_.diagnostics().failures;
+  report.collisionFailures.assign(collision_.diagnostics().failures.begin(),
+                                  collision_.diagnostics().failures.end());
   report.sleepingBodies = sleep_.sleepingBodies(state_);
   ++stepCount_;
   time_ += h;
@@ -114,7 +116,7 @@ void World::buildIslands() {
   step_.dynamicMask.resize(state_.size());
   for (std::size_t i = 0; i < state_.size(); ++i) step_.dynamicMask[i] = state_.isDynamic(i);
   articulations_.markIslandBodies(step_.dynamicMask);  // a tree counts once
-  step_.islands = islandBuilder_.build(step_.dynamicMask, edges.edges);
+  islandBuilder_.build(step_.dynamicMask, edges.edges, step_.islands);
 
   step_.work.resize(step_.islands.size());
   for (std::size_t k = 0; k < step_.islands.size(); ++k) {
@@ -142,8 +144,8 @@ void World::emitRows(IslandWork& island) {
 }
 
 void World::solveIsland(IslandWork& island) {
-  island.assembled = ProblemAssembler(settings_.assembly)
-                         .assemble(island.rows, state_, &articulations_, step_.inverseInertias());
+  ProblemAssembler(settings_.assembly)
+      .assemble(island.rows, state_, &articulations_, step_.inverseInertias(), island.assembled);
   const solvers::ContactProblem& problem = island.assembled.problem;
   if (problemObserver_) problemObserver_(island.island.id, problem);
   // The island's choice: the override of its smallest body that has one, else the world's.
@@ -154,7 +156,7 @@ void World::solveIsland(IslandWork& island) {
       .choose(problem, {island.assembled.degreesOfFreedom}, choice, settings_.solve.options,
               island.plan);
   if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
-  island.outcome = solvers::solveWithFallback(problem, island.plan, registry_, solvers_);
+  solvers::solveWithFallback(problem, island.plan, registry_, solvers_, island.outcome);
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);
 }
@@ -176,19 +178,40 @@ void World::correctPenetrations() {
     if (solver == nullptr) break;  // validated at construction; a registry only grows
     const auto started = std::chrono::steady_clock::now();
     const joints::BlockRange contacts = island.blocks[kContactRows];
-    VelocityProblemNormals normals{island.assembled.problem.W, {}};
-    normals.normalRows.reserve(contacts.count);
+    VelocityProblemNormals& normals = step_.penetrationNormals;  // kept for its storage
+    normals.W = island.assembled.problem.W;
+    normals.normalRows.clear();
     for (std::size_t k = contacts.first; k < contacts.end(); ++k)
       normals.normalRows.push_back(island.assembled.slots[k].offset);
     island.penetration = correctPenetration(
         island.rows.in(contacts), collision_.cache().manifolds(), settings_.contact.penetration,
         step_.h, state_, *solver, &articulations_, &normals);
+    normals.W = solvers::DelassusOperator();  // W's storage is the assembler's to reuse
     island.penetrationSeconds = secondsSince(started);
   }
 }
 
-IslandReport World::islandReport(const IslandWork& island) const {
-  IslandReport report;
+// The vectors keep their storage from the last step (islands are resized by the step and every
+// field of each is overwritten), so a steady step allocates nothing here.
+void World::resetReport(double h) {
+  StepReport& r = report_;
+  std::vector<geometry::CollisionFailure> failures = std::move(r.collisionFailures);
+  std::vector<IslandReport> islands = std::move(r.islands);
+  std::vector<geometry::JointId> broken = std::move(r.joints.broken);
+  std::vector<QuarantineEvent> quarantined = std::move(r.quarantined);
+  r = StepReport{};  // every number and flag back to its default
+  failures.clear();
+  broken.clear();
+  quarantined.clear();
+  r.collisionFailures = std::move(failures);
+  r.islands = std::move(islands);  // resized and overwritten by the step
+  r.joints.broken = std::move(broken);
+  r.quarantined = std::move(quarantined);
+  r.stepIndex = stepCount_;
+  r.timeStep = h;
+}
+
+void World::fillIslandReport(const IslandWork& island, IslandReport& report) const {
   report.island = island.island.id;
   report.bodies = island.island.bodies.size();
   report.contacts = island.blocks[kContactRows].count;
@@ -200,7 +223,6 @@ IslandReport World::islandReport(const IslandWork& island) const {
   report.attempts = island.outcome.attempts;
   report.penetration = island.penetration;
   report.penetrationSeconds = island.penetrationSeconds;
-  return report;
 }
 
 }  // namespace coulomb::engine

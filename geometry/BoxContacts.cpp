@@ -46,10 +46,12 @@ void faceContact(const BoxFrame& ref, int axis, double sign, const BoxFrame& inc
   const Eigen::Vector3d incCentre = inc.centre + incSign * inc.half[j] * inc.axes.col(j);
   const int k1 = (j + 1) % 3, k2 = (j + 2) % 3;
   const Eigen::Vector3d e1 = inc.half[k1] * inc.axes.col(k1), e2 = inc.half[k2] * inc.axes.col(k2);
-  std::vector<ClipVertex> polygon{{incCentre + e1 + e2, 0u},
-                                  {incCentre - e1 + e2, 1u},
-                                  {incCentre - e1 - e2, 2u},
-                                  {incCentre + e1 - e2, 3u}};
+  ClipPolygon polygon;
+  polygon.vertices[0] = {incCentre + e1 + e2, 0u};
+  polygon.vertices[1] = {incCentre - e1 + e2, 1u};
+  polygon.vertices[2] = {incCentre - e1 - e2, 2u};
+  polygon.vertices[3] = {incCentre + e1 - e2, 3u};
+  polygon.count = 4;
   const Eigen::Vector3d refCentre = ref.centre + ref.half[axis] * nRef;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   const Eigen::Vector3d du = ref.axes.col(u), dv = ref.axes.col(v);

@@ -4,20 +4,30 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <unordered_map>
 
 namespace coulomb::geometry {
 
-std::vector<CandidatePair> BroadPhase::update(const std::vector<Collider>& colliders,
-                                              std::span<const Pose> shapePoses,
-                                              std::vector<char>& usable, FclScene& scene,
-                                              double margin, const PairPredicate& keep,
-                                              std::vector<CollisionFailure>& failures,
-                                              std::span<const double> sweeps) {
+std::size_t BroadPhase::indexOf(ColliderId id) const {
+  const auto it =
+      std::lower_bound(indexById_.begin(), indexById_.end(), id,
+                       [](const auto& entry, ColliderId key) { return entry.first < key; });
+  if (it == indexById_.end() || it->first != id)
+    throw std::logic_error("BroadPhase: the tree returned a collider it was not given");
+  return it->second;
+}
+
+const std::vector<CandidatePair>& BroadPhase::update(const std::vector<Collider>& colliders,
+                                                     std::span<const Pose> shapePoses,
+                                                     std::vector<char>& usable, FclScene& scene,
+                                                     double margin, const PairPredicate& keep,
+                                                     std::vector<CollisionFailure>& failures,
+                                                     std::span<const double> sweeps) {
   auto sweepOf = [&](std::size_t i) { return i < sweeps.size() ? sweeps[i] : 0.0; };
-  std::unordered_map<ColliderId, std::size_t> indexOf;
-  indexOf.reserve(colliders.size());
-  std::vector<std::size_t> planes, solids;
+  indexById_.clear();
+  planes_.clear();
+  solids_.clear();
+  std::vector<std::size_t>& planes = planes_;
+  std::vector<std::size_t>& solids = solids_;
   for (std::size_t i = 0; i < colliders.size(); ++i) {
     if (!usable[i]) continue;
     const Collider& c = colliders[i];
@@ -30,14 +40,19 @@ std::vector<CandidatePair> BroadPhase::update(const std::vector<Collider>& colli
       scene.erase(c.id);
       continue;
     }
-    indexOf.emplace(c.id, i);
+    indexById_.emplace_back(c.id, i);
     (std::holds_alternative<Plane>(*c.shape) ? planes : solids).push_back(i);
   }
-  for (const ColliderId id : scene.ids())  // colliders removed since the last step
-    if (!indexOf.count(id)) scene.erase(id);
+  std::sort(indexById_.begin(), indexById_.end());
+  if (scene.size() != indexById_.size())  // colliders removed since the last step
+    for (const ColliderId id : scene.ids())
+      if (!std::binary_search(indexById_.begin(), indexById_.end(), std::pair{id, std::size_t{0}},
+                              [](const auto& l, const auto& r) { return l.first < r.first; }))
+        scene.erase(id);
   scene.updateTree();
 
-  std::vector<std::pair<ColliderId, ColliderId>> ids = scene.overlappingPairs();  // sorted
+  std::vector<std::pair<ColliderId, ColliderId>>& ids = ids_;
+  scene.overlappingPairs(ids);  // sorted
   const auto treePairs = static_cast<std::ptrdiff_t>(ids.size());
   // Planes: one AABB-against-half-space test per solid (cheap; the tree cannot hold planes).
   for (std::size_t p : planes) {
@@ -51,12 +66,13 @@ std::vector<CandidatePair> BroadPhase::update(const std::vector<Collider>& colli
                          std::max(colliders[p].id, colliders[s].id));
     }
   }
-  std::sort(ids.begin() + treePairs, ids.end());
-  std::inplace_merge(ids.begin(), ids.begin() + treePairs, ids.end());
-  std::vector<CandidatePair> pairs;
-  pairs.reserve(ids.size());
+  // One sort of the whole list (the tree's part is already sorted): std::inplace_merge would
+  // allocate a buffer on every step.
+  if (static_cast<std::ptrdiff_t>(ids.size()) > treePairs) std::sort(ids.begin(), ids.end());
+  std::vector<CandidatePair>& pairs = pairs_;
+  pairs.clear();
   for (const auto& [ia, ib] : ids) {
-    const std::size_t a = indexOf.at(ia), b = indexOf.at(ib);
+    const std::size_t a = indexOf(ia), b = indexOf(ib);
     const Collider& ca = colliders[a];
     const Collider& cb = colliders[b];
     if (ca.body == cb.body) continue;

@@ -23,11 +23,21 @@ class BroadPhase {
   /// usable[i] == false are left out; a collider FCL rejects is reported and left out too.
   /// `sweeps[i]` [m] (empty: none) grows collider i's AABB beyond the margin, so every pair
   /// within margin + sweeps[a] + sweeps[b] is a candidate (SweptMargin.hpp).
-  std::vector<CandidatePair> update(const std::vector<Collider>& colliders,
-                                    std::span<const Pose> shapePoses, std::vector<char>& usable,
-                                    FclScene& scene, double margin, const PairPredicate& keep,
-                                    std::vector<CollisionFailure>& failures,
-                                    std::span<const double> sweeps = {});
+  /// The returned pairs live until the next update (buffers reused: no allocation once sized).
+  const std::vector<CandidatePair>& update(const std::vector<Collider>& colliders,
+                                           std::span<const Pose> shapePoses,
+                                           std::vector<char>& usable, FclScene& scene,
+                                           double margin, const PairPredicate& keep,
+                                           std::vector<CollisionFailure>& failures,
+                                           std::span<const double> sweeps = {});
+
+ private:
+  std::size_t indexOf(ColliderId id) const;
+
+  std::vector<std::pair<ColliderId, std::size_t>> indexById_;  // sorted by id
+  std::vector<std::size_t> planes_, solids_;
+  std::vector<std::pair<ColliderId, ColliderId>> ids_;
+  std::vector<CandidatePair> pairs_;
 };
 
 }  // namespace coulomb::geometry

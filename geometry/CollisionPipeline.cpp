@@ -51,7 +51,8 @@ const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Co
   usable_.assign(n, 1);
 
   // Duplicate ids would make pairs ambiguous: keep the first, report the others.
-  std::vector<std::size_t> order(n);
+  std::vector<std::size_t>& order = order_;
+  order.resize(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) {
     return std::tie(colliders[l].id, l) < std::tie(colliders[r].id, r);
@@ -88,7 +89,7 @@ const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Co
   }
 
   colliderSweeps(colliders, usable_, motion, settings_.speculativeSweep, sweeps_);
-  const std::vector<CandidatePair> pairs =
+  const std::vector<CandidatePair>& pairs =
       broadPhase_.update(colliders, shapePoses_, usable_, scene_, settings_.speculativeMargin,
                          keepPair, diagnostics_.failures, sweeps_);
   fresh_.clear();

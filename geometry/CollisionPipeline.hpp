@@ -88,6 +88,7 @@ class CollisionPipeline {
   std::vector<char> usable_;
   std::vector<double> sweeps_;  // [m] per collider (SweptMargin.hpp)
   std::vector<ContactManifold> fresh_;
+  std::vector<std::size_t> order_;  // colliders by id (duplicate check)
 };
 
 }  // namespace coulomb::geometry

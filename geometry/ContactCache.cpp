@@ -121,8 +121,10 @@ const std::vector<ContactManifold>& ContactCache::refresh(std::vector<ContactMan
   if (!std::is_sorted(fresh.begin(), fresh.end(), byColliders))  // NarrowPhase output already is
     std::sort(fresh.begin(), fresh.end(), byColliders);
   auto old = manifolds_.begin();
-  std::vector<char> continued(manifolds_.size(), 0);
-  std::vector<std::size_t> orphans;  // fresh one-point manifolds of a pair new this step
+  std::vector<char>& continued = continued_;
+  continued.assign(manifolds_.size(), 0);
+  std::vector<std::size_t>& orphans = orphans_;  // fresh one-point manifolds of a pair new now
+  orphans.clear();
   for (std::size_t f = 0; f < fresh.size(); ++f) {
     ContactManifold& m = fresh[f];
     old = std::lower_bound(old, manifolds_.end(), m, byColliders);

@@ -44,6 +44,8 @@ class ContactCache {
 
   ContactCacheSettings settings_;
   std::vector<ContactManifold> manifolds_;
+  std::vector<char> continued_;       // refresh(): old manifolds matched this step
+  std::vector<std::size_t> orphans_;  // refresh(): fresh one-point manifolds of new pairs
 };
 
 }  // namespace coulomb::geometry

@@ -250,9 +250,13 @@ void FclScene::updateTree() {
   impl_->moved.clear();                 // of the whole tree when nothing moved
 }
 
-std::vector<std::pair<ColliderId, ColliderId>> FclScene::overlappingPairs() const {
+std::size_t FclScene::size() const {
+  return impl_->entries.size();
+}
+
+void FclScene::overlappingPairs(std::vector<std::pair<ColliderId, ColliderId>>& pairs) const {
   using Pairs = std::vector<std::pair<ColliderId, ColliderId>>;
-  Pairs pairs;
+  pairs.clear();
   auto onPair = [](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
     const ColliderId ia = static_cast<const Impl::Entry*>(a->getUserData())->id;
     const ColliderId ib = static_cast<const Impl::Entry*>(b->getUserData())->id;
@@ -261,7 +265,6 @@ std::vector<std::pair<ColliderId, ColliderId>> FclScene::overlappingPairs() cons
   };
   impl_->manager.collide(&pairs, onPair);
   std::sort(pairs.begin(), pairs.end());  // the tree's order changes every frame (fcl#368)
-  return pairs;
 }
 
 Aabb FclScene::worldAabb(ColliderId id) const {

@@ -63,14 +63,16 @@ class FclScene {
   void erase(ColliderId id);
   [[nodiscard]] bool contains(ColliderId id) const;
   [[nodiscard]] std::vector<ColliderId> ids() const;  // sorted
+  [[nodiscard]] std::size_t size() const;
 
   /// World pose of the collider's shape frame; throws std::invalid_argument if not finite.
   /// `sweep` [m] grows its AABB beyond the margin (velocity-swept margin, SweptMargin.hpp).
   void setPose(ColliderId id, const Pose& worldPose, double sweep = 0.0);
   /// Refits the tree after setPose calls (one rebalance for all moved objects).
   void updateTree();
-  /// Every pair of tree objects whose (fattened) AABBs overlap, as (lower id, higher id), sorted.
-  [[nodiscard]] std::vector<std::pair<ColliderId, ColliderId>> overlappingPairs() const;
+  /// Every pair of tree objects whose (fattened) AABBs overlap, as (lower id, higher id), sorted,
+  /// into `pairs` (cleared first; its capacity is reused, so a steady step does not allocate).
+  void overlappingPairs(std::vector<std::pair<ColliderId, ColliderId>>& pairs) const;
   [[nodiscard]] Aabb worldAabb(ColliderId id) const;
 
   /// fcl::collide with GST_LIBCCD. Meshes go first as FCL requires; the result is re-oriented.

@@ -81,28 +81,27 @@ void reduceToFour(const Eigen::Vector3d& normal, std::vector<ContactCandidate>& 
   points = std::move(kept);
 }
 
-void clipPolygon(std::vector<ClipVertex>& polygon, const Eigen::Vector3d& axis, double limit,
+void clipPolygon(ClipPolygon& polygon, const Eigen::Vector3d& axis, double limit,
                  std::uint32_t plane) {
-  if (polygon.empty()) return;
-  std::vector<ClipVertex> out;
-  out.reserve(polygon.size() + 2);
   const std::size_t n = polygon.size();
+  if (n == 0) return;
+  ClipPolygon out;
   for (std::size_t i = 0; i < n; ++i) {
     const ClipVertex& a = polygon[i];
     const ClipVertex& b = polygon[(i + 1) % n];
     const double da = axis.dot(a.position) - limit;
     const double db = axis.dot(b.position) - limit;
-    if (da <= 0.0) out.push_back(a);
+    if (da <= 0.0) out.vertices[out.count++] = a;
     if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
       const double t = da / (da - db);
       // The segment a->b is an original edge (numbered by its first vertex, 0..3) or lies on an
       // earlier clip line q (code 4 + q); a segment crosses a line once, so ids are unique.
       const std::uint32_t segment = (a.id & 0x100u) ? 4u + ((a.id >> 4) & 0x3u) : (a.id & 0x3u);
-      out.push_back(
-          {a.position + t * (b.position - a.position), 0x100u | ((plane & 0x3u) << 4) | segment});
+      out.vertices[out.count++] = {a.position + t * (b.position - a.position),
+                                   0x100u | ((plane & 0x3u) << 4) | segment};
     }
   }
-  polygon = std::move(out);
+  polygon = out;
 }
 
 ContactManifold finishManifold(PairContact& raw, const Collider& a, const Collider& b,

@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -40,9 +42,21 @@ void reduceToFour(const Eigen::Vector3d& normal, std::vector<ContactCandidate>& 
 /// line it lies on, so ids are unique and stable under small motions.
 struct ClipVertex {
   Eigen::Vector3d position;
-  std::uint32_t id;
+  std::uint32_t id = 0;
 };
-void clipPolygon(std::vector<ClipVertex>& polygon, const Eigen::Vector3d& axis, double limit,
+/// A quadrilateral clipped by four lines has at most 8 vertices (each line adds at most one to a
+/// convex polygon), so the clip works in place without touching the heap in the narrow phase.
+struct ClipPolygon {
+  static constexpr std::size_t kCapacity = 8;
+  std::array<ClipVertex, kCapacity> vertices;
+  std::size_t count = 0;
+  std::size_t size() const { return count; }
+  const ClipVertex& operator[](std::size_t i) const { return vertices[i]; }
+  const ClipVertex* begin() const { return vertices.data(); }
+  const ClipVertex* end() const { return vertices.data() + count; }
+};
+/// Needs polygon.size() < ClipPolygon::kCapacity (a quad after at most three earlier clips).
+void clipPolygon(ClipPolygon& polygon, const Eigen::Vector3d& axis, double limit,
                  std::uint32_t plane);
 
 /// Builds the final manifold (<= 4 points, tangent frame, anchors, material). `raw.normal` must

@@ -57,42 +57,82 @@ BlockSparseMatrix BlockSparseMatrix::fromBlockCsr(std::vector<int> blockSizes,
                                                   std::vector<double> values) {
   BlockSparseMatrix m;
   m.blockSize_ = std::move(blockSizes);
-  const int nb = m.blockCount();
-  m.blockOffset_.assign(nb + 1, 0);
-  for (int b = 0; b < nb; ++b) {
-    if (m.blockSize_[b] < 1 || m.blockSize_[b] > 3)
-      throw std::invalid_argument("block " + std::to_string(b) + " has size " +
-                                  std::to_string(m.blockSize_[b]) + ", expected 1, 2 or 3");
-    m.blockOffset_[b + 1] = m.blockOffset_[b] + m.blockSize_[b];
-  }
-  const auto nnzBlocks = static_cast<int>(blockColumns.size());
-  if (static_cast<int>(rowStart.size()) != nb + 1 || rowStart.front() != 0 ||
-      rowStart.back() != nnzBlocks)
-    throw std::invalid_argument("fromBlockCsr: row starts do not match the block columns");
-  m.valueStart_.resize(nnzBlocks);
-  m.diagonal_.assign(nb, -1);
-  int valueCount = 0;
-  for (int b = 0; b < nb; ++b) {
-    if (rowStart[b + 1] < rowStart[b])
-      throw std::invalid_argument("fromBlockCsr: row starts decrease");
-    for (int k = rowStart[b]; k < rowStart[b + 1]; ++k) {
-      const int c = blockColumns[k];
-      if (c < 0 || c >= nb || (k > rowStart[b] && c <= blockColumns[k - 1]))
-        throw std::invalid_argument("fromBlockCsr: block columns of row " + std::to_string(b) +
-                                    " are not strictly increasing inside [0, " +
-                                    std::to_string(nb) + ")");
-      if (c == b) m.diagonal_[b] = k;
-      m.valueStart_[k] = valueCount;
-      valueCount += m.blockSize_[b] * m.blockSize_[c];
-    }
-  }
-  if (valueCount != static_cast<int>(values.size()))
-    throw std::invalid_argument("fromBlockCsr: " + std::to_string(values.size()) +
-                                " values, the blocks need " + std::to_string(valueCount));
   m.rowStart_ = std::move(rowStart);
   m.col_ = std::move(blockColumns);
   m.values_ = std::move(values);
+  m.indexBlockCsr();
   return m;
+}
+
+void BlockSparseMatrix::assignBlockCsr(const std::vector<int>& blockSizes,
+                                       const std::vector<int>& rowStart,
+                                       const std::vector<int>& blockColumns,
+                                       const std::vector<double>& values) {
+  blockSize_.assign(blockSizes.begin(), blockSizes.end());
+  rowStart_.assign(rowStart.begin(), rowStart.end());
+  col_.assign(blockColumns.begin(), blockColumns.end());
+  values_.assign(values.begin(), values.end());
+  indexBlockCsr();
+}
+
+void BlockSparseMatrix::assignFromDense(const Eigen::MatrixXd& W,
+                                        const std::vector<int>& blockSizes) {
+  const auto nb = static_cast<int>(blockSizes.size());
+  blockSize_.assign(blockSizes.begin(), blockSizes.end());
+  blockOffset_.assign(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) blockOffset_[b + 1] = blockOffset_[b] + blockSizes[b];
+  if (blockOffset_.back() != W.rows() || W.cols() != W.rows())
+    throw std::invalid_argument("toBlockSparse: partition does not match the operator size");
+  // Straight into block-CSR (columns ascending per row; zero off-diagonal blocks skipped).
+  rowStart_.assign(nb + 1, 0);
+  col_.clear();
+  values_.clear();
+  for (int i = 0; i < nb; ++i) {
+    for (int j = 0; j < nb; ++j) {
+      const auto blk = W.block(blockOffset_[i], blockOffset_[j], blockSizes[i], blockSizes[j]);
+      if (i != j && (blk.array() == 0.0).all()) continue;
+      col_.push_back(j);
+      for (int a = 0; a < blockSizes[i]; ++a)
+        for (int c = 0; c < blockSizes[j]; ++c) values_.push_back(blk(a, c));
+    }
+    rowStart_[i + 1] = static_cast<int>(col_.size());
+  }
+  indexBlockCsr();
+}
+
+void BlockSparseMatrix::indexBlockCsr() {
+  const int nb = blockCount();
+  blockOffset_.assign(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) {
+    if (blockSize_[b] < 1 || blockSize_[b] > 3)
+      throw std::invalid_argument("block " + std::to_string(b) + " has size " +
+                                  std::to_string(blockSize_[b]) + ", expected 1, 2 or 3");
+    blockOffset_[b + 1] = blockOffset_[b] + blockSize_[b];
+  }
+  const auto nnzBlocks = static_cast<int>(col_.size());
+  if (static_cast<int>(rowStart_.size()) != nb + 1 || rowStart_.front() != 0 ||
+      rowStart_.back() != nnzBlocks)
+    throw std::invalid_argument("fromBlockCsr: row starts do not match the block columns");
+  valueStart_.resize(nnzBlocks);
+  diagonal_.assign(nb, -1);
+  int valueCount = 0;
+  for (int b = 0; b < nb; ++b) {
+    if (rowStart_[b + 1] < rowStart_[b])
+      throw std::invalid_argument("fromBlockCsr: row starts decrease");
+    for (int k = rowStart_[b]; k < rowStart_[b + 1]; ++k) {
+      const int c = col_[k];
+      if (c < 0 || c >= nb || (k > rowStart_[b] && c <= col_[k - 1]))
+        throw std::invalid_argument("fromBlockCsr: block columns of row " + std::to_string(b) +
+                                    " are not strictly increasing inside [0, " +
+                                    std::to_string(nb) + ")");
+      if (c == b) diagonal_[b] = k;
+      valueStart_[k] = valueCount;
+      valueCount += blockSize_[b] * blockSize_[c];
+    }
+  }
+  if (valueCount != static_cast<int>(values_.size()))
+    throw std::invalid_argument("fromBlockCsr: " + std::to_string(values_.size()) +
+                                " values, the blocks need " + std::to_string(valueCount));
 }
 
 void BlockSparseMatrix::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {

@@ -27,6 +27,13 @@ class BlockSparseMatrix {
   // blockSize(row) x blockSize(col)). Throws std::invalid_argument when the arrays disagree.
   static BlockSparseMatrix fromBlockCsr(std::vector<int> blockSizes, std::vector<int> rowStart,
                                         std::vector<int> blockColumns, std::vector<double> values);
+  // W's blocks over the partition `blockSizes` (sum = W's size): exact zero off-diagonal blocks
+  // dropped, diagonal blocks always kept. Reuses this matrix's storage.
+  void assignFromDense(const Eigen::MatrixXd& W, const std::vector<int>& blockSizes);
+  // The same into this matrix, copying the arrays into its own storage (no allocation once it
+  // has held a matrix as large).
+  void assignBlockCsr(const std::vector<int>& blockSizes, const std::vector<int>& rowStart,
+                      const std::vector<int>& blockColumns, const std::vector<double>& values);
 
   [[nodiscard]] int blockCount() const { return static_cast<int>(blockSize_.size()); }
   [[nodiscard]] int size() const { return blockOffset_.empty() ? 0 : blockOffset_.back(); }
@@ -62,6 +69,7 @@ class BlockSparseMatrix {
   void addToDiagonal(double s);
 
  private:
+  void indexBlockCsr();  // offsets, value starts and diagonal from the CSR arrays; validates
   std::vector<int> blockSize_, blockOffset_;
   std::vector<int> rowStart_, col_, valueStart_, diagonal_;
   std::vector<double> values_;

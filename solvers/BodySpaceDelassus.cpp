@@ -6,9 +6,22 @@
 
 namespace coulomb::solvers {
 
-BodySpaceDelassus::BodySpaceDelassus(int bodyCount, std::vector<int> blockSizes)
-    : bodies_(bodyCount), size_(std::move(blockSizes)) {
+BodySpaceDelassus::BodySpaceDelassus(int bodyCount, std::vector<int> blockSizes) {
+  size_ = std::move(blockSizes);
+  reset(bodyCount);
+}
+
+void BodySpaceDelassus::reset(int bodyCount, const std::vector<int>& blockSizes) {
+  size_.assign(blockSizes.begin(), blockSizes.end());
+  reset(bodyCount);
+}
+
+void BodySpaceDelassus::reset(int bodyCount) {
   if (bodyCount < 0) throw std::invalid_argument("BodySpaceDelassus: negative body count");
+  bodies_ = bodyCount;
+  nonFinite_ = rescan_ = false;
+  entries_.reset();
+  diagonal_.clear();
   offset_.assign(size_.size() + 1, 0);
   for (std::size_t b = 0; b < size_.size(); ++b) {
     if (size_[b] != 1 && size_[b] != 3)
@@ -71,7 +84,7 @@ void BodySpaceDelassus::bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd
 }
 
 void BodySpaceDelassus::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  Eigen::VectorXd dv;
+  Eigen::VectorXd& dv = productVelocities_;
   bodyVelocities(x, dv);
   for (int b = 0; b < blockCount(); ++b) addBlockVelocity(b, dv, y.data() + offset_[b]);
 }

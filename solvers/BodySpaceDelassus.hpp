@@ -20,6 +20,8 @@ class BodySpaceDelassus {
   /// `blockSizes`: the solver blocks (1 or 3 rows each); `bodyCount`: the island's dynamic bodies
   /// (local indices 0 .. bodyCount-1).
   BodySpaceDelassus(int bodyCount, std::vector<int> blockSizes);
+  /// The same operator emptied (every side unset) for a new partition, keeping its storage.
+  void reset(int bodyCount, const std::vector<int>& blockSizes);
 
   /// Side `side` (0 or 1) of block `block` acts on local body `body` with the block's rows `J`
   /// (k x 6, twist (v, w)) and `G` = M^-1 J^T (6 x k). A side left unset carries no unknowns.
@@ -84,6 +86,7 @@ class BodySpaceDelassus {
   }
   [[nodiscard]] const double* J(int row, int side) const { return &j_[(2 * row + side) * 6]; }
   [[nodiscard]] const double* G(int row, int side) const { return &g_[(2 * row + side) * 6]; }
+  void reset(int bodyCount);  // from size_
   void computeDiagonalBlock(int b, double* out) const;
   void noteSideSet(int block, int side, const double* values, std::size_t count);
   int bodies_ = 0;
@@ -94,6 +97,9 @@ class BodySpaceDelassus {
   bool rescan_ = false;        // a side was set twice: allFinite() checks the stored values
   mutable std::shared_ptr<const BlockSparseMatrix> entries_;  // toBlockSparse() cache
   mutable std::vector<double> diagonal_;                      // diagonalBlocks() cache, 9 per block
+  // multiplyAdd's dv, kept for its storage: like the caches above, a const call writes it, so one
+  // operator is not for two threads at once.
+  mutable Eigen::VectorXd productVelocities_;
 };
 
 }  // namespace coulomb::solvers

@@ -67,15 +67,16 @@ std::string say(const Parts&... parts) {
   return s.str();
 }
 
-std::string where(const std::vector<ConstraintBlock>& blocks, const std::vector<int>& offset,
-                  int row) {
+// Only on the failure path: validate() itself keeps no offset table (it runs on every solve).
+std::string where(const std::vector<ConstraintBlock>& blocks, int row) {
   size_t b = 0;
-  while (b + 1 < blocks.size() && offset[b + 1] <= row) ++b;
+  int first = 0;
+  while (b + 1 < blocks.size() && first + blocks[b].size() <= row) first += blocks[b++].size();
   std::ostringstream s;
   s << "row " << row << " (block " << b << ", " << blockKindName(blocks[b].kind);
   if (blocks[b].isContact())
     s << " component "
-      << "NTT"[row - offset[b]];
+      << "NTT"[row - first];
   s << ")";
   return s.str();
 }
@@ -84,7 +85,6 @@ std::string where(const std::vector<ConstraintBlock>& blocks, const std::vector<
 
 std::optional<std::string> ContactProblem::validate() const {
   const int n = size();
-  const std::vector<int> offset = blockOffsets();
   if (W.rows() != W.cols()) {
     return say("W is ", W.rows(), " x ", W.cols(), ", not square");
   }
@@ -141,40 +141,42 @@ std::optional<std::string> ContactProblem::validate() const {
   };
   if (!allFinite(q))
     for (int i = 0; i < n; ++i)
-      if (!std::isfinite(q[i])) return "q at " + where(blocks, offset, i) + " is not finite";
+      if (!std::isfinite(q[i])) return "q at " + where(blocks, i) + " is not finite";
   if (warmStart && !allFinite(*warmStart))
     for (int i = 0; i < n; ++i)
       if (!std::isfinite((*warmStart)[i]))
-        return "warm start at " + where(blocks, offset, i) + " is not finite";
+        return "warm start at " + where(blocks, i) + " is not finite";
   // Entries of W: non-finite anywhere (stored), diagonal positive.
   // Row a of block b (the block known: no search per row).
-  auto diagonalOkIn = [&](size_t b, int a, double w) -> std::optional<std::string> {
-    const int row = offset[b] + a;
+  // Row a of block b, whose first row is `first`.
+  auto diagonalOkIn = [&](size_t b, int first, int a, double w) -> std::optional<std::string> {
+    const int row = first + a;
     const bool frictionlessTangent =
-        blocks[b].isContact() && row != offset[b] &&
-        (blocks[b].anisotropic ? (row - offset[b] == 1 ? blocks[b].mu1 : blocks[b].mu2)
-                               : blocks[b].mu) == 0.0;
+        blocks[b].isContact() && a != 0 &&
+        (blocks[b].anisotropic ? (a == 1 ? blocks[b].mu1 : blocks[b].mu2) : blocks[b].mu) == 0.0;
     if (frictionlessTangent ? w < 0 : !(w > 0)) {
       std::ostringstream s;
-      s << "W diagonal at " << where(blocks, offset, row) << " is " << w
+      s << "W diagonal at " << where(blocks, row) << " is " << w
         << ", must be positive (W block not positive on its diagonal)";
       return s.str();
     }
     return std::nullopt;
   };
-  auto diagonalOk = [&](int row, double w) -> std::optional<std::string> {
-    const auto b = static_cast<size_t>(std::upper_bound(offset.begin(), offset.end(), row) -
-                                       offset.begin() - 1);
-    return diagonalOkIn(b, row - offset[b], w);
+  // Every diagonal entry W_ii given by diagonalAt(i), block by block.
+  auto diagonalOk = [&](auto diagonalAt) -> std::optional<std::string> {
+    int first = 0;
+    for (size_t b = 0; b < blocks.size(); first += blocks[b++].size())
+      for (int a = 0; a < blocks[b].size(); ++a)
+        if (auto e = diagonalOkIn(b, first, a, diagonalAt(first + a))) return e;
+    return std::nullopt;
   };
   if (const Eigen::MatrixXd* d = W.denseMatrix()) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
         if (!std::isfinite((*d)(i, j))) {
-          return say("W(", i, ", ", j, ") is not finite, at ", where(blocks, offset, i));
+          return say("W(", i, ", ", j, ") is not finite, at ", where(blocks, i));
         }
-    for (int i = 0; i < n; ++i)
-      if (auto e = diagonalOk(i, (*d)(i, i))) return e;
+    if (auto e = diagonalOk([d](int i) { return (*d)(i, i); })) return e;
   } else if (const BlockSparseMatrix* s = W.blockSparseMatrix()) {
     for (int b = 0; b < s->blockCount(); ++b)
       for (int k = s->rowBegin(b); k < s->rowEnd(b); ++k) {
@@ -182,7 +184,7 @@ std::optional<std::string> ContactProblem::validate() const {
         for (int t = 0; t < sb * sc; ++t)
           if (!std::isfinite(s->blockValues(k)[t])) {
             return say("W(", s->blockOffset(b) + t / sc, ", ", s->blockOffset(c) + t % sc,
-                       ") is not finite, at ", where(blocks, offset, s->blockOffset(b) + t / sc));
+                       ") is not finite, at ", where(blocks, s->blockOffset(b) + t / sc));
           }
       }
     for (int b = 0; b < s->blockCount(); ++b) {
@@ -191,7 +193,8 @@ std::optional<std::string> ContactProblem::validate() const {
       }
       const double* v = s->blockValues(s->diagonalBlock(b));
       for (int a = 0; a < s->blockSize(b); ++a)
-        if (auto e = diagonalOkIn(static_cast<size_t>(b), a, v[(s->blockSize(b) + 1) * a]))
+        if (auto e = diagonalOkIn(static_cast<size_t>(b), s->blockOffset(b), a,
+                                  v[(s->blockSize(b) + 1) * a]))
           return e;
     }
   } else if (const BodySpaceDelassus* s = W.bodySpaceOperator()) {
@@ -199,20 +202,22 @@ std::optional<std::string> ContactProblem::validate() const {
     // cached blocks (the same partition as the problem's blocks, checked above).
     if (!s->allFinite()) return std::string("W (body-space factors J, M^-1 J^T) is not finite");
     const std::vector<double>& d = s->diagonalBlocks();
-    for (size_t b = 0; b < blocks.size(); ++b) {
+    int first = 0;
+    for (size_t b = 0; b < blocks.size(); first += blocks[b++].size()) {
       const int k = blocks[b].size();
       for (int a = 0; a < k; ++a)
-        if (auto e = diagonalOkIn(b, a, d[9 * b + static_cast<size_t>((k + 1) * a)])) return e;
+        if (auto e = diagonalOkIn(b, first, a, d[9 * b + static_cast<size_t>((k + 1) * a)]))
+          return e;
     }
   } else {
     for (int i = 0; i < n; ++i) {
       const Eigen::VectorXd col = W.column(i);
       for (int r = 0; r < n; ++r)
         if (!std::isfinite(col[r])) {
-          return say("W(", r, ", ", i, ") is not finite, at ", where(blocks, offset, r));
+          return say("W(", r, ", ", i, ") is not finite, at ", where(blocks, r));
         }
-      if (auto e = diagonalOk(i, col[i])) return e;
     }
+    if (auto e = diagonalOk([this](int i) { return W.column(i)[i]; })) return e;
   }
   return std::nullopt;
 }

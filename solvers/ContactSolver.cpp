@@ -9,37 +9,61 @@ namespace coulomb::solvers {
 
 SolveOutcome ContactSolver::solve(const ContactProblem& problem,
                                   const SolverOptions& options) const {
-  return run(problem, options, nullptr);
+  SolveOutcome out;
+  solve(problem, options, nullptr, out);
+  return out;
 }
 
 SolveOutcome ContactSolver::solve(const ContactProblem& problem, const SolverOptions& options,
                                   const Eigen::VectorXd& start) const {
-  return run(problem, options, &start);
+  SolveOutcome out;
+  solve(problem, options, &start, out);
+  return out;
 }
 
-SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptions& options,
-                                const Eigen::VectorXd* start) const {
+void ContactSolver::solve(const ContactProblem& problem, const SolverOptions& options,
+                          const Eigen::VectorXd* start, SolveOutcome& out) const {
+  if (busy_) {  // nested on this instance (a composite solver): a workspace of its own
+    Workspace nested;
+    run(problem, options, start, out, nested);
+    return;
+  }
+  busy_ = true;
+  try {
+    run(problem, options, start, out, workspace_);
+  } catch (...) {
+    busy_ = false;
+    throw;
+  }
+  busy_ = false;
+}
+
+void ContactSolver::run(const ContactProblem& problem, const SolverOptions& options,
+                        const Eigen::VectorXd* start, SolveOutcome& out, Workspace& work) const {
   const auto t0 = SolveContext::Clock::now();
-  SolveOutcome out;
   SolverReport& report = out.report;
+  report.reset();
   report.solver = name();
-  auto finish = [&]() -> SolveOutcome {
+  auto finish = [&]() {
+    work.prepared.bodySpace.reset();  // the problem's factors: theirs to reuse once it is done
+    work.prepared.diagonalBlocks = nullptr;
     report.seconds = std::chrono::duration<double>(SolveContext::Clock::now() - t0).count();
-    return std::move(out);
   };
   if (auto bad = validateOptions(options)) {
     report.status = SolverStatus::InvalidProblem;
     report.note("invalid options: " + *bad);
+    out.impulses.setZero(problem.size());
+    out.velocities = problem.q;
     return finish();
   }
+  const int n = problem.size();
+  out.impulses.setZero(n);
+  out.velocities = problem.q;
   if (auto bad = problem.validate()) {
     report.status = SolverStatus::InvalidProblem;
     report.note(*bad);
     return finish();
   }
-  const int n = problem.size();
-  out.impulses = Eigen::VectorXd::Zero(n);
-  out.velocities = problem.q;
   if (auto why = notApplicable(problem)) {
     report.status = SolverStatus::NotApplicable;
     report.note(*why);
@@ -52,9 +76,9 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
     return finish();
   }
   const SolveContext context(options, t0);
-  PreparedProblem prepared;
+  PreparedProblem& prepared = work.prepared;
   try {
-    prepared = PreparedProblem::from(problem, worksInBodySpace());
+    prepared.assign(problem, worksInBodySpace());
   } catch (const std::exception& e) {
     report.status = SolverStatus::InvalidProblem;
     report.note(std::string("cannot prepare the problem: ") + e.what());
@@ -63,7 +87,8 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
   // Start: the given one, else the warm start, kept only if it beats r = 0 (SOLVERS.md (3.6)).
   // Each candidate's residual keeps its dv (body space), handed to the solver with the chosen
   // start (PreparedProblem::start) so that it does not compute them again.
-  Eigen::VectorXd u, dv, r = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd &u = work.u, &dv = work.dv, &r = work.r;
+  r.setZero(n);
   double e = prepared.residual(r, u, dv);
   const Eigen::VectorXd* candidate =
       start ? start : (options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr);
@@ -71,9 +96,10 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
     if (candidate->size() != n || !candidate->allFinite()) {
       report.note("start ignored (wrong size or not finite)");
     } else {
-      Eigen::VectorXd s = prepared.fromOriginal(*candidate);
+      Eigen::VectorXd& s = work.s;
+      prepared.fromOriginal(*candidate, s);
       prepared.project(s);
-      Eigen::VectorXd dvs;
+      Eigen::VectorXd& dvs = work.dvs;
       const double es = prepared.residual(s, u, dvs);
       if (es <= e) {
         r = s;
@@ -84,7 +110,8 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
       }
     }
   }
-  const Eigen::VectorXd r0 = r;
+  Eigen::VectorXd& r0 = work.r0;
+  r0 = r;
   if (e <= options.tolerance) {
     report.status = SolverStatus::Converged;
     report.nativeResidual = e;
@@ -92,7 +119,7 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
   } else {
     prepared.start.known = true;
     prepared.start.r = r;
-    prepared.start.dv.swap(dv);
+    prepared.start.dv = dv;
     prepared.start.residual = e;
     try {
       solvePrepared(prepared, context, r, report);
@@ -107,7 +134,7 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
       r = r0;
     }
   }
-  out.impulses = prepared.toOriginal(r);
+  prepared.toOriginal(r, out.impulses);
   const ResidualValue res = commonResidual(problem, out.impulses, out.velocities);
   report.residual = res.relative;
   report.absoluteResidual = res.absolute;
@@ -125,7 +152,7 @@ SolveOutcome ContactSolver::run(const ContactProblem& problem, const SolverOptio
              report.residual <= options.tolerance) {
     report.status = SolverStatus::Converged;
   }
-  return finish();
+  finish();
 }
 
 }  // namespace coulomb::solvers

@@ -41,6 +41,13 @@ class ContactSolver {
   // Same, starting from `start` (original variables) instead of the problem's warm start.
   [[nodiscard]] SolveOutcome solve(const ContactProblem& problem, const SolverOptions& options,
                                    const Eigen::VectorXd& start) const;
+  // The same into `out` (start: null for the problem's warm start), reusing its vectors and this
+  // solver's workspace: a solve of a problem no larger than the last allocates nothing in
+  // solve() itself (what the algorithm needs is the solver's own business). A solver instance
+  // must not be used by two threads at once; a nested solve on the same instance uses a
+  // workspace of its own.
+  void solve(const ContactProblem& problem, const SolverOptions& options,
+             const Eigen::VectorXd* start, SolveOutcome& out) const;
 
   // The algorithm. On entry r is a feasible start (prepared variables); on exit the best iterate
   // found, finite. Sets status, iterations, native residual and notes; solve() does the rest.
@@ -48,8 +55,14 @@ class ContactSolver {
                              Eigen::VectorXd& r, SolverReport& report) const = 0;
 
  private:
-  SolveOutcome run(const ContactProblem& problem, const SolverOptions& options,
-                   const Eigen::VectorXd* start) const;
+  struct Workspace {
+    PreparedProblem prepared;
+    Eigen::VectorXd u, dv, r, s, dvs, r0;
+  };
+  void run(const ContactProblem& problem, const SolverOptions& options,
+           const Eigen::VectorXd* start, SolveOutcome& out, Workspace& work) const;
+  mutable Workspace workspace_;
+  mutable bool busy_ = false;
 };
 
 }  // namespace coulomb::solvers

@@ -4,20 +4,39 @@
 
 namespace coulomb::solvers {
 
-DelassusOperator::DelassusOperator() : dense_(std::make_shared<Eigen::MatrixXd>()) {}
+namespace {
+// The 0 x 0 matrix every empty operator shares (immutable), so that default construction, which
+// every problem and every step does, never allocates.
+const std::shared_ptr<const Eigen::MatrixXd>& emptyMatrix() {
+  static const auto empty = std::make_shared<const Eigen::MatrixXd>();
+  return empty;
+}
+}  // namespace
+
+DelassusOperator::DelassusOperator() : dense_(emptyMatrix()) {}
 
 DelassusOperator DelassusOperator::dense(Eigen::MatrixXd W) {
+  return dense(std::make_shared<const Eigen::MatrixXd>(std::move(W)));
+}
+
+DelassusOperator DelassusOperator::dense(std::shared_ptr<const Eigen::MatrixXd> W) {
+  if (!W) throw std::invalid_argument("dense: needs a matrix");
   DelassusOperator op;
   op.storage_ = Storage::Dense;
-  op.dense_ = std::make_shared<const Eigen::MatrixXd>(std::move(W));
+  op.dense_ = std::move(W);
   return op;
 }
 
 DelassusOperator DelassusOperator::blockSparse(BlockSparseMatrix W) {
+  return blockSparse(std::make_shared<const BlockSparseMatrix>(std::move(W)));
+}
+
+DelassusOperator DelassusOperator::blockSparse(std::shared_ptr<const BlockSparseMatrix> W) {
+  if (!W) throw std::invalid_argument("blockSparse: needs a matrix");
   DelassusOperator op;
   op.storage_ = Storage::BlockSparse;
   op.dense_.reset();
-  op.sparse_ = std::make_shared<const BlockSparseMatrix>(std::move(W));
+  op.sparse_ = std::move(W);
   return op;
 }
 
@@ -120,38 +139,29 @@ Eigen::VectorXd DelassusOperator::column(int j) const {
 }
 
 BlockSparseMatrix DelassusOperator::toBlockSparse(const std::vector<int>& blockSizes) const {
-  if (storage_ == Storage::BlockSparse && sparse_->blockSizes() == blockSizes) return *sparse_;
-  if (storage_ == Storage::BodySpace && body_->blockSizes() == blockSizes)
-    return body_->toBlockSparse();
-  const int n = rows();
-  Eigen::MatrixXd gathered;  // block-sparse with another partition, or matrix-free
-  if (storage_ != Storage::Dense) {
-    gathered.resize(n, n);
-    for (int j = 0; j < n; ++j) gathered.col(j) = column(j);
+  BlockSparseMatrix out;
+  toBlockSparse(blockSizes, out);
+  return out;
+}
+
+void DelassusOperator::toBlockSparse(const std::vector<int>& blockSizes,
+                                     BlockSparseMatrix& out) const {
+  if (storage_ == Storage::BlockSparse && sparse_->blockSizes() == blockSizes) {
+    out = *sparse_;
+    return;
   }
-  const Eigen::MatrixXd& dense = storage_ == Storage::Dense ? *dense_ : gathered;
-  const auto nb = static_cast<int>(blockSizes.size());
-  std::vector<int> offset(nb + 1, 0);
-  for (int b = 0; b < nb; ++b) offset[b + 1] = offset[b] + blockSizes[b];
-  if (offset.back() != n || dense.cols() != n)
-    throw std::invalid_argument("toBlockSparse: partition does not match the operator size");
-  // Straight into block-CSR (columns ascending per row; zero off-diagonal blocks skipped).
-  std::vector<int> rowStart(nb + 1, 0), columns;
-  std::vector<double> values;
-  columns.reserve(static_cast<std::size_t>(nb) * nb);
-  values.reserve(static_cast<std::size_t>(n) * n);
-  for (int i = 0; i < nb; ++i) {
-    for (int j = 0; j < nb; ++j) {
-      const auto blk = dense.block(offset[i], offset[j], blockSizes[i], blockSizes[j]);
-      if (i != j && (blk.array() == 0.0).all()) continue;
-      columns.push_back(j);
-      for (int a = 0; a < blockSizes[i]; ++a)
-        for (int c = 0; c < blockSizes[j]; ++c) values.push_back(blk(a, c));
-    }
-    rowStart[i + 1] = static_cast<int>(columns.size());
+  if (storage_ == Storage::BodySpace && body_->blockSizes() == blockSizes) {
+    out = body_->toBlockSparse();
+    return;
   }
-  return BlockSparseMatrix::fromBlockCsr(blockSizes, std::move(rowStart), std::move(columns),
-                                         std::move(values));
+  if (storage_ == Storage::Dense) {
+    out.assignFromDense(*dense_, blockSizes);
+    return;
+  }
+  const int n = rows();  // block-sparse with another partition, or matrix-free
+  Eigen::MatrixXd gathered(n, n);
+  for (int j = 0; j < n; ++j) gathered.col(j) = column(j);
+  out.assignFromDense(gathered, blockSizes);
 }
 
 }  // namespace coulomb::solvers

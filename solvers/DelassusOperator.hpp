@@ -20,9 +20,13 @@ class DelassusOperator {
   // y = W x; y has the right size on entry.
   using Product = std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& y)>;
 
-  DelassusOperator();  // empty 0 x 0 (dense)
+  DelassusOperator();  // empty 0 x 0 (dense); allocates nothing
   static DelassusOperator dense(Eigen::MatrixXd W);
   static DelassusOperator blockSparse(BlockSparseMatrix W);
+  // Sharing storage the caller may refill once no operator holds it any more (the assembler's
+  // buffers, reused from step to step).
+  static DelassusOperator dense(std::shared_ptr<const Eigen::MatrixXd> W);
+  static DelassusOperator blockSparse(std::shared_ptr<const BlockSparseMatrix> W);
   static DelassusOperator matrixFree(int size, Product product);
   static DelassusOperator bodySpace(std::shared_ptr<const BodySpaceDelassus> W);
 
@@ -40,6 +44,8 @@ class DelassusOperator {
   // W restricted to the partition `blockSizes` (sum = rows()); exact zero blocks are dropped,
   // diagonal blocks always kept.
   [[nodiscard]] BlockSparseMatrix toBlockSparse(const std::vector<int>& blockSizes) const;
+  // The same into `out`, reusing its storage (dense, block-sparse and body-space storage).
+  void toBlockSparse(const std::vector<int>& blockSizes, BlockSparseMatrix& out) const;
   // Column j of W (dense: a copy; block-sparse: gathered; matrix-free: one product).
   [[nodiscard]] Eigen::VectorXd column(int j) const;
 

@@ -62,18 +62,22 @@ double projectScalar(const ConstraintBlock& b, double x) {
 
 void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
                     const GaussSeidelSettings& settings, const ContactUpdate& update,
-                    Eigen::VectorXd& r, SolverReport& report) {
+                    Eigen::VectorXd& r, SolverReport& report, GaussSeidelWorkspace* workspace) {
+  GaussSeidelWorkspace local;
+  GaussSeidelWorkspace& work = workspace != nullptr ? *workspace : local;
   const int nb = p.blockCount();
   const int maxSweeps = context.maxIterations(settings.defaultMaxSweeps);
-  std::vector<int> order(nb);
+  std::vector<int>& order = work.order;
+  order.resize(nb);
   std::iota(order.begin(), order.end(), 0);
   std::mt19937_64 rng(settings.seed);
   double omega = settings.omega;
   bool omegaSwitched = false;
 
-  Eigen::VectorXd u, best = r;
+  Eigen::VectorXd &u = work.u, &best = work.best;
+  best = r;
   const BodySpaceDelassus* body = p.bodySpace.get();
-  Eigen::VectorXd dv;  // body space: M^-1 J^T r, kept current by every block update
+  Eigen::VectorXd& dv = work.dv;  // body space: M^-1 J^T r, kept current by every block update
   double bestResidual = 0.0;
   if (p.startIs(r)) {  // ContactSolver::solve's start: its residual and dv are known
     bestResidual = p.start.residual;

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 #include <cstdint>
 
 namespace coulomb::solvers {
@@ -44,8 +46,16 @@ class ContactUpdate {
   void (*call_)(void*, int, const Eigen::Vector3d&, Eigen::Vector3d&);
 };
 
+// The loop's vectors, kept by a solver between its solves so that a steady step allocates
+// nothing (ContactSolver: one instance is not for two threads at once).
+struct GaussSeidelWorkspace {
+  std::vector<int> order;
+  Eigen::VectorXd u, best, dv;
+};
+
 void runGaussSeidel(const PreparedProblem& problem, const SolveContext& context,
                     const GaussSeidelSettings& settings, const ContactUpdate& update,
-                    Eigen::VectorXd& r, SolverReport& report);
+                    Eigen::VectorXd& r, SolverReport& report,
+                    GaussSeidelWorkspace* workspace = nullptr);
 
 }  // namespace coulomb::solvers

@@ -10,8 +10,24 @@ namespace coulomb::solvers {
 
 PreparedProblem PreparedProblem::from(const ContactProblem& problem, bool keepBodySpace) {
   PreparedProblem p;
-  p.blocks = problem.blocks;
-  p.offset = problem.blockOffsets();
+  p.assign(problem, keepBodySpace);
+  return p;
+}
+
+void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) {
+  PreparedProblem& p = *this;
+  p.start.known = false;  // its vectors keep their storage
+  p.bodySpace.reset();
+  p.diagonalBlocks = nullptr;
+  p.scale.resize(0);
+  p.maxDiagonal = 0.0;
+  p.blocks.assign(problem.blocks.begin(), problem.blocks.end());
+  p.offset.assign(problem.blocks.size() + 1, 0);
+  p.sizes.resize(problem.blocks.size());
+  for (std::size_t b = 0; b < problem.blocks.size(); ++b) {
+    p.sizes[b] = problem.blocks[b].size();
+    p.offset[b + 1] = p.offset[b] + p.sizes[b];
+  }
   p.q = problem.q;
   bool anisotropic = false;
   for (const ConstraintBlock& b : p.blocks) anisotropic |= b.isContact() && b.anisotropic;
@@ -19,7 +35,7 @@ PreparedProblem PreparedProblem::from(const ContactProblem& problem, bool keepBo
     p.bodySpace = problem.W.sharedBodySpace();
     p.diagonalBlocks = p.bodySpace->diagonalBlocks().data();
   } else {
-    p.W = problem.W.toBlockSparse(problem.blockSizes());
+    problem.W.toBlockSparse(p.sizes, p.W);
   }
   if (anisotropic) {
     p.scale = Eigen::VectorXd::Ones(p.size());
@@ -39,7 +55,6 @@ PreparedProblem PreparedProblem::from(const ContactProblem& problem, bool keepBo
     const int s = p.blocks[b].size();
     for (int a = 0; a < s; ++a) p.maxDiagonal = std::max(p.maxDiagonal, d[(s + 1) * a]);
   }
-  return p;
 }
 
 const double* PreparedProblem::diagonalBlock(int b) const {
@@ -125,14 +140,28 @@ void PreparedProblem::project(Eigen::VectorXd& r) const {
 }
 
 Eigen::VectorXd PreparedProblem::toOriginal(const Eigen::VectorXd& r) const {
-  return scale.size() == 0 ? r : Eigen::VectorXd(r.cwiseProduct(scale));
+  Eigen::VectorXd out;
+  toOriginal(r, out);
+  return out;
 }
 
 Eigen::VectorXd PreparedProblem::fromOriginal(const Eigen::VectorXd& r) const {
-  if (scale.size() == 0) return r;
-  Eigen::VectorXd out = r;
-  for (int i = 0; i < size(); ++i) out[i] = scale[i] > 0 ? r[i] / scale[i] : 0.0;
+  Eigen::VectorXd out;
+  fromOriginal(r, out);
   return out;
+}
+
+void PreparedProblem::toOriginal(const Eigen::VectorXd& r, Eigen::VectorXd& out) const {
+  if (scale.size() == 0)
+    out = r;
+  else
+    out = r.cwiseProduct(scale);
+}
+
+void PreparedProblem::fromOriginal(const Eigen::VectorXd& r, Eigen::VectorXd& out) const {
+  out = r;
+  if (scale.size() == 0) return;
+  for (int i = 0; i < size(); ++i) out[i] = scale[i] > 0 ? r[i] / scale[i] : 0.0;
 }
 
 SolveContext::SolveContext(const SolverOptions& options, Clock::time_point start)

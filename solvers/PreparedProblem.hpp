@@ -29,6 +29,7 @@ struct PreparedProblem {
   Eigen::VectorXd q;
   std::vector<ConstraintBlock> blocks;  // isotropic (anisotropic ones mapped, see above)
   std::vector<int> offset;              // blocks.size() + 1 entries
+  std::vector<int> sizes;               // blocks[b].size()
   Eigen::VectorXd scale;                // r_original = scale .* r; empty = identity
   double qNorm = 0.0;                   // plainNorm(q)
   double maxDiagonal = 0.0;             // max_i W_ii
@@ -55,6 +56,8 @@ struct PreparedProblem {
   KnownStart start;
 
   static PreparedProblem from(const ContactProblem& problem, bool keepBodySpace = false);
+  // The same into this object, reusing its storage (ContactSolver's workspace).
+  void assign(const ContactProblem& problem, bool keepBodySpace = false);
 
   [[nodiscard]] int size() const { return static_cast<int>(q.size()); }
   [[nodiscard]] int blockCount() const { return static_cast<int>(blocks.size()); }
@@ -78,6 +81,9 @@ struct PreparedProblem {
   void project(Eigen::VectorXd& r) const;
   [[nodiscard]] Eigen::VectorXd toOriginal(const Eigen::VectorXd& r) const;
   [[nodiscard]] Eigen::VectorXd fromOriginal(const Eigen::VectorXd& r) const;
+  // The same into `out` (may not alias r).
+  void toOriginal(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
+  void fromOriginal(const Eigen::VectorXd& r, Eigen::VectorXd& out) const;
 };
 
 // Per-solve services: clock, time limit, iteration budget, history.

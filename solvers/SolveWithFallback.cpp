@@ -42,8 +42,25 @@ PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& pl
 
 PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
                               const SolverRegistry& registry, SolverInstances& instances) {
-  const auto started = std::chrono::steady_clock::now();
   PlanOutcome out;
+  solveWithFallback(problem, plan, registry, instances, out);
+  return out;
+}
+
+void solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
+                       const SolverRegistry& registry, SolverInstances& instances,
+                       PlanOutcome& out) {
+  const auto started = std::chrono::steady_clock::now();
+  // out's reports are overwritten in place (copy-assignment keeps their strings' storage).
+  std::size_t attemptCount = 0;
+  auto record = [&](const SolverReport& report) {
+    if (attemptCount < out.attempts.size())
+      out.attempts[attemptCount] = report;
+    else
+      out.attempts.push_back(report);
+    ++attemptCount;
+  };
+  SolveOutcome& outcome = instances.attemptOutcome();
   bool haveBest = false;
   for (const SolveAttempt& attempt : plan.attempts) {
     if (haveBest && withinPlan(out.best.report, plan)) break;
@@ -53,7 +70,7 @@ PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& pl
       missing.solver = attempt.solver;
       missing.status = SolverStatus::NotApplicable;
       missing.message = "no solver named '" + attempt.solver + "' in the registry";
-      out.attempts.push_back(missing);
+      record(missing);
       continue;
     }
     // The time limit is for the whole plan: each attempt gets what is left.
@@ -62,22 +79,24 @@ PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& pl
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (used >= options.timeLimitSeconds && haveBest) break;
     options.timeLimitSeconds = std::max(options.timeLimitSeconds - used, 1e-6);
-    SolveOutcome outcome = haveBest ? solver->solve(problem, options, out.best.impulses)
-                                    : solver->solve(problem, options);
-    out.attempts.push_back(outcome.report);
+    solver->solve(problem, options, haveBest ? &out.best.impulses : nullptr, outcome);
+    record(outcome.report);
     if (outcome.report.status == SolverStatus::InvalidProblem) {
-      out.best = std::move(outcome);  // the problem itself is wrong: no solver will do better
+      std::swap(out.best, outcome);  // the problem itself is wrong: no solver will do better
       haveBest = true;
       break;
     }
     if (outcome.report.status == SolverStatus::NotApplicable) continue;
     if (!haveBest || outcome.report.residual < out.best.report.residual) {
-      out.best = std::move(outcome);
+      std::swap(out.best, outcome);  // both keep their storage for the next solve
       haveBest = true;
     }
   }
+  out.attempts.resize(attemptCount);
   if (!haveBest) {  // nothing could run: r = 0, measured, with the last attempt's status
-    out.best.impulses = Eigen::VectorXd::Zero(problem.size());
+    out.best.report.reset();
+    out.best.impulses.setZero(problem.size());
+    out.best.velocities = problem.q;
     if (!problem.validate()) {
       const ResidualValue e = commonResidual(problem, out.best.impulses, out.best.velocities);
       out.best.report.residual = e.relative;
@@ -89,7 +108,6 @@ PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& pl
   out.status = haveBest && withinPlan(out.best.report, plan) ? SolverStatus::Converged
                                                              : out.best.report.status;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  return out;
 }
 
 }  // namespace coulomb::solvers

@@ -35,12 +35,20 @@ class SolverInstances {
   /// The solver named `name`, or nullptr when `registry` has none.
   const ContactSolver* get(const std::string& name, const SolverRegistry& registry);
 
+  /// An outcome kept for its storage: each attempt is solved into it (solveWithFallback).
+  SolveOutcome& attemptOutcome() { return attempt_; }
+
  private:
   std::vector<std::pair<std::string, std::unique_ptr<ContactSolver>>> made_;
+  SolveOutcome attempt_;
 };
 
 PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
                               const SolverRegistry& registry, SolverInstances& instances);
+/// The same into `out`, reusing its storage and the instances' (a steady step allocates nothing).
+void solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
+                       const SolverRegistry& registry, SolverInstances& instances,
+                       PlanOutcome& out);
 /// The same with solvers created for this call.
 PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
                               const SolverRegistry& registry);

@@ -7,9 +7,7 @@ namespace coulomb::solvers {
 namespace {
 
 // W_ii of the normal rows, when it is cheap (dense or block-sparse over the problem's blocks).
-bool normalDiagonal(const ContactProblem& problem, const std::vector<int>& offsets, int block,
-                    double& value) {
-  const int row = offsets[block];
+bool normalDiagonal(const ContactProblem& problem, int row, int block, double& value) {
   if (const Eigen::MatrixXd* dense = problem.W.denseMatrix()) {
     value = (*dense)(row, row);
     return true;
@@ -36,12 +34,11 @@ ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
   f.degreesOfFreedom = island.degreesOfFreedom;
   f.zeroIsExact = true;
   f.factored = problem.W.bodySpaceOperator() != nullptr;
-  const std::vector<int> offsets = problem.blockOffsets();
   double minW = std::numeric_limits<double>::infinity(), maxW = 0.0;
   bool diagonalKnown = true;
-  for (size_t b = 0; b < problem.blocks.size(); ++b) {
+  int row = 0;  // first row of block b
+  for (size_t b = 0; b < problem.blocks.size(); row += problem.blocks[b++].size()) {
     const ConstraintBlock& block = problem.blocks[b];
-    const int row = offsets[b];
     const double qN = problem.q[row];
     switch (block.kind) {
       case BlockKind::Equality:
@@ -62,10 +59,13 @@ ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
     ++f.contacts;
     f.zeroIsExact = f.zeroIsExact && qN >= 0;
     const bool warm = problem.warmStart && (*problem.warmStart)[row] > 0;
-    if (!(qN < 0 || warm)) continue;
+    // A contact that does not separate (q_N <= 0) carries load as soon as anything pushes: the
+    // touching boxes of a stack on its first step have q_N = 0 exactly (they fall together),
+    // and counting only q_N < 0 made a fresh pyramid look like 40 loose contacts.
+    if (!(qN <= 0 || warm)) continue;
     ++f.activeContacts;
     double w = 0;
-    if (diagonalKnown && normalDiagonal(problem, offsets, static_cast<int>(b), w) && w > 0) {
+    if (diagonalKnown && normalDiagonal(problem, row, static_cast<int>(b), w) && w > 0) {
       minW = std::min(minW, w);
       maxW = std::max(maxW, w);
     } else {

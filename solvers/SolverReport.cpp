@@ -26,4 +26,19 @@ void SolverReport::note(const std::string& text) {
   message += text;
 }
 
+void SolverReport::reset() {
+  std::string keptSolver = std::move(solver), keptName = std::move(nativeResidualName),
+              keptMessage = std::move(message);
+  std::vector<IterationRecord> keptHistory = std::move(history);
+  *this = SolverReport{};
+  keptSolver.clear();
+  keptName.clear();
+  keptMessage.clear();
+  keptHistory.clear();
+  solver = std::move(keptSolver);
+  nativeResidualName = std::move(keptName);
+  message = std::move(keptMessage);
+  history = std::move(keptHistory);
+}
+
 }  // namespace coulomb::solvers

@@ -43,6 +43,8 @@ struct SolverReport {
   std::string message;                   // human-readable notes, "; "-separated
 
   void note(const std::string& text);  // appends to message
+  // Back to a fresh report, keeping the strings' and the history's storage (solvers reuse one).
+  void reset();
   [[nodiscard]] bool converged() const { return status == SolverStatus::Converged; }
 };
 

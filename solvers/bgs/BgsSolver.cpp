@@ -8,7 +8,8 @@ namespace coulomb::solvers {
 
 void BgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& context,
                               Eigen::VectorXd& r, SolverReport& report) const {
-  std::vector<LocalContactData> local(p.blockCount());
+  std::vector<LocalContactData>& local = local_;
+  local.resize(p.blockCount());
   for (int b = 0; b < p.blockCount(); ++b)
     if (p.blocks[b].isContact()) local[b] = LocalContactData::from(p.contactBlock(b));
   const LocalSolverSettings settings = options_.local;
@@ -22,7 +23,7 @@ void BgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
   gs.shuffle = options_.shuffle;
   gs.seed = options_.seed;
   gs.residualInterval = options_.residualInterval;
-  runGaussSeidel(p, context, gs, ContactUpdate(rule), r, report);
+  runGaussSeidel(p, context, gs, ContactUpdate(rule), r, report, &workspace_);
 }
 
 }  // namespace coulomb::solvers

@@ -2,9 +2,12 @@
 // bgs: blocked Gauss-Seidel over contacts with the exact local solve of Algorithm 4.1
 // (SOLVERS.md section 4), the sweep of Algorithm 3.1, omega switched to 0.7 after a stall.
 #include <coulomb/solvers/ContactSolver.hpp>
+#include <coulomb/solvers/GaussSeidelLoop.hpp>
 #include <coulomb/solvers/bgs/LocalContactSolver.hpp>
 
 #include <cstdint>
+
+#include <vector>
 
 namespace coulomb::solvers {
 
@@ -39,6 +42,8 @@ class BgsSolver final : public ContactSolver {
 
  private:
   BgsOptions options_;
+  mutable std::vector<LocalContactData> local_;  // kept for their storage (ContactSolver::solve)
+  mutable GaussSeidelWorkspace workspace_;
 };
 
 }  // namespace coulomb::solvers

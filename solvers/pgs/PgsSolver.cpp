@@ -26,12 +26,9 @@ double inverseTangentSpectralRadius(const Eigen::Matrix3d& block) {
 
 void PgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& context,
                               Eigen::VectorXd& r, SolverReport& report) const {
-  struct Local {
-    Eigen::Matrix3d W;
-    double rho = 0, rhoN = 0, rhoT = 0;
-  };
   const PgsOptions::Update mode = options_.update;
-  std::vector<Local> local(p.blockCount());
+  std::vector<Local>& local = local_;
+  local.resize(p.blockCount());
   for (int b = 0; b < p.blockCount(); ++b) {
     if (!p.blocks[b].isContact()) continue;
     Local& l = local[b];
@@ -68,7 +65,7 @@ void PgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
   gs.seed = options_.seed;
   gs.stallWindow = options_.stallWindow;
   gs.residualInterval = options_.residualInterval;
-  runGaussSeidel(p, context, gs, ContactUpdate(rule), r, report);
+  runGaussSeidel(p, context, gs, ContactUpdate(rule), r, report, &workspace_);
 }
 
 }  // namespace coulomb::solvers

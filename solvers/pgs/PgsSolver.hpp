@@ -6,6 +6,8 @@
 
 #include <cstdint>
 
+#include <vector>
+
 namespace coulomb::solvers {
 
 struct PgsOptions {
@@ -45,7 +47,13 @@ class PgsSolver final : public ContactSolver {
                      Eigen::VectorXd& r, SolverReport& report) const override;
 
  private:
+  struct Local {  // per contact block: W_bb and its steps
+    Eigen::Matrix3d W;
+    double rho = 0, rhoN = 0, rhoT = 0;
+  };
   PgsOptions options_;
+  mutable std::vector<Local> local_;  // kept for their storage (see ContactSolver::solve)
+  mutable GaussSeidelWorkspace workspace_;
 };
 
 // 1 / lambda_max((A + A^T)/2) of a 3x3 block, and of its tangential 2x2 block; used for the

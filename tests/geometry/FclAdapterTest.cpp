@@ -149,13 +149,15 @@ TEST(FclAdapter, TreeFindsOverlapsWithMarginAndKeepsPlanesOut) {
   scene.setPose({2, 0}, Pose::translation({5, 0, 0}));
   scene.setPose({3, 0}, Pose::identity());
   scene.updateTree();
-  const auto pairs = scene.overlappingPairs();
+  std::vector<std::pair<ColliderId, ColliderId>> pairs;
+  scene.overlappingPairs(pairs);
   ASSERT_EQ(pairs.size(), 1u);
   EXPECT_EQ(pairs[0].first, (ColliderId{0, 0}));
   EXPECT_EQ(pairs[0].second, (ColliderId{1, 0}));
   scene.erase({1, 0});
   scene.updateTree();
-  EXPECT_TRUE(scene.overlappingPairs().empty());
+  scene.overlappingPairs(pairs);
+  EXPECT_TRUE(pairs.empty());
 }
 
 }  // namespace

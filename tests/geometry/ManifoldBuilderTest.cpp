@@ -47,8 +47,12 @@ TEST(ManifoldBuilder, ReductionDoesNotDependOnInputOrder) {
 }
 
 TEST(ManifoldBuilder, ClipKeepsInsideVerticesAndNamesNewOnes) {
-  std::vector<ClipVertex> square{
-      {{-1, -1, 0}, 0}, {{1, -1, 0}, 1}, {{1, 1, 0}, 2}, {{-1, 1, 0}, 3}};
+  ClipPolygon square;
+  square.vertices[0] = {{-1, -1, 0}, 0};
+  square.vertices[1] = {{1, -1, 0}, 1};
+  square.vertices[2] = {{1, 1, 0}, 2};
+  square.vertices[3] = {{-1, 1, 0}, 3};
+  square.count = 4;
   clipPolygon(square, Eigen::Vector3d::UnitX(), 0.5, 2);
   ASSERT_EQ(square.size(), 4u);
   EXPECT_EQ(square[0].id, 0u);

@@ -1,0 +1,89 @@
+// A steady step allocates nothing (docs/architecture.md, "Memory in the step"): every buffer of
+// the step (step data, rows, problems, solver workspaces, the report) is kept by its World and
+// reused, so once a scene's sizes have settled a step makes no heap allocation at all. Checked on
+// the Gauss-Seidel solvers, forced (`pgs!`, `bgs!`); the Newton solvers' factorizations, which
+// auto falls back to, still allocate (docs/benchmarks.md, "The step rebuilt").
+// The count covers the whole process: glibc's malloc family is interposed below (operator new
+// and Eigen both end there). Not built under AddressSanitizer, which owns the allocator.
+#include <coulomb/engine/World.hpp>
+#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/solvers/SolvePolicy.hpp>
+
+#include "scenes/SceneRegistry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace {
+std::atomic<std::uint64_t> allocations{0};
+}  // namespace
+
+extern "C" {
+void* __libc_malloc(std::size_t);
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void* malloc(std::size_t n) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(n);
+}
+void* calloc(std::size_t count, std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(count, size);
+}
+void* realloc(void* p, std::size_t n) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, n);
+}
+}
+
+namespace coulomb {
+namespace {
+
+// Heap allocations made by `steps` steps of the built-in scene after `warmup` steps, solved by
+// exactly `solver` (text form of the solve policy).
+std::uint64_t allocationsOfSteadySteps(const std::string& name, const std::string& solver,
+                                       int warmup, int steps) {
+  const engine::io::Scene scene = scenes::loadBuiltinScene(name);
+  engine::World world = engine::io::buildWorld(scene);
+  world.setSolver(solvers::solverChoice(solver));
+  for (int k = 0; k < warmup; ++k) world.step(scene.settings.timeStep);
+  const std::uint64_t before = allocations.load();
+  for (int k = 0; k < steps; ++k) world.step(scene.settings.timeStep);
+  return allocations.load() - before;
+}
+
+TEST(SteadyStepAllocation, TheCounterSeesContainersAndEigen) {
+  const std::uint64_t before = allocations.load();
+  std::vector<double> v(100, 1.0);
+  Eigen::VectorXd e = Eigen::VectorXd::Ones(100);
+  EXPECT_GE(allocations.load() - before, 2u);
+  EXPECT_EQ(v.size() + static_cast<std::size_t>(e.size()), 200u);
+}
+
+TEST(SteadyStepAllocation, FirstStepsDoAllocate) {
+  // The buffers are sized on the first steps: the count is not trivially zero.
+  EXPECT_GT(allocationsOfSteadySteps("pyramid_10", "pgs!", 0, 1), 0u);
+}
+
+// A resting 55-box pyramid: broad and narrow phase, islands, body-space assembly (W factored),
+// the plan, pgs, impulses, the split impulse's check, sleep, the report.
+TEST(SteadyStepAllocation, RestingPyramidAllocatesNothing) {
+  EXPECT_EQ(allocationsOfSteadySteps("pyramid_10", "pgs!", 50, 200), 0u);
+}
+
+// A 10-box tower: a dense-then-sparse block W of a narrow island, with bgs.
+TEST(SteadyStepAllocation, TowerAllocatesNothing) {
+  EXPECT_EQ(allocationsOfSteadySteps("box_stack_10", "bgs!", 50, 200), 0u);
+}
+
+// One box held by friction on an incline: a dense one-contact island.
+TEST(SteadyStepAllocation, BoxOnInclineAllocatesNothing) {
+  EXPECT_EQ(allocationsOfSteadySteps("box_incline_A_stick", "bgs!", 50, 200), 0u);
+}
+
+}  // namespace
+}  // namespace coulomb
