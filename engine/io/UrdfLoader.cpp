@@ -85,6 +85,7 @@ class ModelBuilder {
     model_.urdfLinkCount = static_cast<int>(doc_.links.size());
     model_.urdfJointCount = static_cast<int>(doc_.joints.size());
     model_.gravity = options_.gravity;
+    model_.gazebo = doc_.gazebo;
     for (std::size_t i = 0; i < doc_.joints.size(); ++i)
       childJoints_[doc_.joints[i].parent].push_back(static_cast<int>(i));
     placeRoot();
@@ -316,6 +317,7 @@ class ModelBuilder {
   }
 
   void flushWarnings() {
+    model_.warnings = doc_.warnings;  // the XML pass's, with their lines, in file order
     auto group = [&](const std::vector<std::string>& names, const std::string& what) {
       if (!names.empty()) model_.warnings.push_back(what + ": " + joinNames(names));
     };

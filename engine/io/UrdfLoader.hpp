@@ -41,8 +41,9 @@ struct UrdfOptions {
   /// Extra folders searched for package:// and relative mesh paths, before the environment
   /// variable COULOMB_PACKAGE_PATH (':'-separated) and the URDF's own folder (docs/urdf.md).
   std::vector<std::filesystem::path> packagePath;
-  /// Friction of a collider: <gazebo reference="link"><mu1> if the file has it, else this map
-  /// by the name of the link's visual <material>, else defaultFriction.
+  /// Friction of a collider: <gazebo reference="link"><mu1> if the file has a valid one (value
+  /// attribute or element text), else this map by the name of the link's visual <material>, else
+  /// defaultFriction.
   std::map<std::string, double> materialFriction;
   double defaultFriction = 0.8;
   /// Inertia given to a body whose whole subtree behind a moving joint is massless (ABA would
@@ -82,6 +83,17 @@ struct UrdfBody {
   bool inertiaValid = true;                // mass > 0 and physically valid (SpatialInertia.hpp)
 };
 
+/// What the file's <gazebo> extensions gave (docs/urdf.md, "Gazebo extensions"). Coulomb uses
+/// <mu1> of blocks that reference a link as that link's friction (and counts <mu2> as used when
+/// it equals mu1); every other child, and every block of the whole robot or of a joint, is
+/// ignored and counted here by element name. Invalid values are warnings, never errors.
+struct UrdfGazeboUse {
+  int blocks = 0;                          // <gazebo> elements in the file
+  std::map<std::string, double> friction;  // link -> mu1: its colliders' friction
+  std::map<std::string, int> used;         // element name -> count ("mu1", "mu2")
+  std::map<std::string, int> ignored;      // element name -> count ("plugin", "kp", ...)
+};
+
 struct UrdfFrame {
   int body = -1;        // -1: the world (a root link named `world`)
   geometry::Pose pose;  // URDF link frame in the body frame
@@ -96,6 +108,7 @@ struct UrdfModel {
   std::map<std::string, UrdfFrame> frames;  // every URDF link
   std::vector<UrdfMimic> mimics;            // not yet enforced: the followers are free DOFs
   std::vector<std::string> warnings;        // what was repaired, dropped or ignored, and why
+  UrdfGazeboUse gazebo;                     // <gazebo> extensions: used and ignored
   bool floatingBase = false;
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};
 

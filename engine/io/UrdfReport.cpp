@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 namespace coulomb::engine::io {
@@ -49,6 +50,32 @@ json bodyJson(const UrdfModel& model, const UrdfBody& body) {
       {"fused_links", body.fusedLinks},
       {"collisions", collisions},
       {"skipped_meshes", body.skippedMeshes}};
+}
+
+json countsJson(const std::map<std::string, int>& counts) {
+  json out = json::object();
+  for (const auto& [name, count] : counts) out[name] = count;
+  return out;
+}
+
+/// "kd x12, kp x12, plugin x2": element names with their counts, in name order.
+std::string countsText(const std::map<std::string, int>& counts) {
+  std::ostringstream out;
+  for (const auto& [name, count] : counts)
+    out << (out.tellp() > 0 ? ", " : "") << name << " x" << count;
+  return out.str();
+}
+
+void gazeboText(const UrdfGazeboUse& gazebo, std::ostream& out) {
+  if (gazebo.blocks == 0) return;
+  out << "\ngazebo extensions (" << gazebo.blocks << " <gazebo> blocks):\n";
+  out << "  used: " << (gazebo.used.empty() ? "nothing" : countsText(gazebo.used)) << "\n";
+  if (!gazebo.friction.empty()) {
+    out << "  friction (mu1) of " << gazebo.friction.size() << " link(s):";
+    for (const auto& [link, mu] : gazebo.friction) out << " " << link << " " << mu;
+    out << "\n";
+  }
+  out << "  ignored: " << (gazebo.ignored.empty() ? "nothing" : countsText(gazebo.ignored)) << "\n";
 }
 
 int velocityCount(const UrdfModel& model) {
@@ -136,6 +163,11 @@ std::string urdfInfoJson(const UrdfModel& model) {
                     {"total_mass", model.totalMass()},
                     {"bodies", bodies},
                     {"mimics", mimics},
+                    {"gazebo",
+                     {{"blocks", model.gazebo.blocks},
+                      {"friction", model.gazebo.friction},
+                      {"used", countsJson(model.gazebo.used)},
+                      {"ignored", countsJson(model.gazebo.ignored)}}},
                     {"warnings", model.warnings}};
   return out.dump(2) + "\n";
 }
@@ -178,6 +210,7 @@ std::string urdfInfoText(const UrdfModel& model) {
       out << "  " << m.joint << " = " << m.multiplier << " * " << m.leader << " + " << m.offset
           << "\n";
   }
+  gazeboText(model.gazebo, out);
   out << "\nwarnings (" << model.warnings.size() << "):\n";
   for (const std::string& w : model.warnings) out << "  - " << w << "\n";
   return out.str();

@@ -26,9 +26,11 @@ UrdfJointState parseUrdfJointState(const std::string& text, const std::string& s
 std::string urdfDynamicsJson(const UrdfModel& model, const UrdfJointState& state);
 
 /// The tree for people: bodies with their joints, masses, inertia validity, fused links and
-/// collision shapes, then mimic couplings and warnings.
+/// collision shapes, then mimic couplings, the <gazebo> extensions used and ignored, and
+/// warnings.
 std::string urdfInfoText(const UrdfModel& model);
-/// The same as JSON, with "dofs" (velocity coordinates) and "joints" (DOF joint names in order).
+/// The same as JSON, with "dofs" (velocity coordinates), "joints" (DOF joint names in order) and
+/// "gazebo" ({"blocks", "friction": {link: mu1}, "used": {element: count}, "ignored": {...}}).
 std::string urdfInfoJson(const UrdfModel& model);
 
 }  // namespace coulomb::engine::io
