@@ -13,6 +13,7 @@
 #include <coulomb/geometry/SpatialInertia.hpp>
 #include <coulomb/joints/tree/Articulation.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -68,6 +69,17 @@ struct UrdfMimic {
   double offset = 0.0;
 };
 
+/// What the loader did with a body's inertia (docs/urdf.md, "Inertia policy").
+enum class UrdfInertiaStatus : std::uint8_t {
+  Physical,   // mass > 0 and a tensor some rigid body has (geometry::checkPhysicalValidity)
+  PointMass,  // mass > 0, zero tensor
+  Massless,   // mass 0 (a frame, or mass 0 with a tensor: kept)
+  AsWritten,  // semidefinite but no rigid body has it (triangle inequality broken, or singular):
+              // kept as the file writes it, with a warning; a tree needs no more
+  Repaired,   // not semidefinite, or a massless subtree behind a moving joint: changed (warning)
+};
+const char* toString(UrdfInertiaStatus status);  // "physical", "point_mass", ...
+
 /// One rigid body of the tree: a URDF link plus every link welded to it by fixed joints.
 struct UrdfBody {
   std::string name;  // the URDF link at the body's frame
@@ -81,6 +93,7 @@ struct UrdfBody {
   double effortLimit = 0.0;                // <limit effort>, 0 = none given
   double velocityLimit = 0.0;              // <limit velocity>, 0 = none given
   bool inertiaValid = true;                // mass > 0 and physically valid (SpatialInertia.hpp)
+  UrdfInertiaStatus inertiaStatus = UrdfInertiaStatus::Physical;
 };
 
 /// What the file's <gazebo> extensions gave (docs/urdf.md, "Gazebo extensions"). Coulomb uses

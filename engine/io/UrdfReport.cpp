@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <map>
 #include <sstream>
+#include <vector>
 
 namespace coulomb::engine::io {
 namespace {
@@ -47,6 +48,7 @@ json bodyJson(const UrdfModel& model, const UrdfBody& body) {
       {"inertia_about_com",
        {inertia(0, 0), inertia(1, 1), inertia(2, 2), inertia(0, 1), inertia(0, 2), inertia(1, 2)}},
       {"inertia_valid", body.inertiaValid},
+      {"inertia", toString(body.inertiaStatus)},
       {"fused_links", body.fusedLinks},
       {"collisions", collisions},
       {"skipped_meshes", body.skippedMeshes}};
@@ -78,6 +80,22 @@ void gazeboText(const UrdfGazeboUse& gazebo, std::ostream& out) {
   out << "  ignored: " << (gazebo.ignored.empty() ? "nothing" : countsText(gazebo.ignored)) << "\n";
 }
 
+const char* inertiaText(UrdfInertiaStatus status) {
+  switch (status) {
+    case UrdfInertiaStatus::Physical:
+      return "valid";
+    case UrdfInertiaStatus::PointMass:
+      return "point mass";
+    case UrdfInertiaStatus::Massless:
+      return "massless";
+    case UrdfInertiaStatus::AsWritten:
+      return "as written, not physical (see warnings)";
+    case UrdfInertiaStatus::Repaired:
+      return "repaired (see warnings)";
+  }
+  return "?";
+}
+
 int velocityCount(const UrdfModel& model) {
   int nv = 0;
   for (const UrdfBody& body : model.bodies) nv += body.joint.nv();
@@ -85,6 +103,13 @@ int velocityCount(const UrdfModel& model) {
 }
 
 }  // namespace
+
+UrdfOptions urdfDynamicsOptions(UrdfOptions options) {
+  options.base = UrdfBase::Fixed;
+  options.jointDamping = false;  // pure rigid-body dynamics, as other tools' M, h and ABA
+  options.loadCollisionMeshes = false;
+  return options;
+}
 
 UrdfJointState parseUrdfJointState(const std::string& text, const std::string& source,
                                    const UrdfModel& model) {
@@ -136,11 +161,22 @@ std::string urdfDynamicsJson(const UrdfModel& model, const UrdfJointState& state
   json rows = json::array();
   for (Eigen::Index i = 0; i < mass.rows(); ++i)
     rows.push_back(vectorJson(mass.row(i).transpose()));
+  // The numbers are the file's, so that they can be checked against another tool: say where
+  // they are not (docs/urdf.md, "Inertia policy").
+  std::vector<std::string> repaired, notPhysical;
+  for (const UrdfBody& body : model.bodies) {
+    if (body.inertiaStatus == UrdfInertiaStatus::Repaired) repaired.push_back(body.name);
+    if (body.inertiaStatus == UrdfInertiaStatus::AsWritten) notPhysical.push_back(body.name);
+  }
   const json out = {
       {"joints", model.dofNames},
       {"qddot", vectorJson(qdd)},
       {"mass_matrix", rows},
-      {"bias_forces", vectorJson(joints::tree::biasForces(tree, state.q, state.qdot))}};
+      {"bias_forces", vectorJson(joints::tree::biasForces(tree, state.q, state.qdot))},
+      {"inertias",
+       {{"as_written", repaired.empty()},
+        {"repaired", repaired},
+        {"not_physical_kept", notPhysical}}}};
   return out.dump() + "\n";
 }
 
@@ -191,9 +227,7 @@ std::string urdfInfoText(const UrdfModel& model) {
         << " by " << joints::tree::toString(b.joint.type) << " '" << b.joint.name << "'";
     if (b.joint.nv() == 1) out << " axis (" << b.joint.axis.transpose() << ")";
     if (std::isfinite(b.joint.lower)) out << " [" << b.joint.lower << ", " << b.joint.upper << "]";
-    out << "\n      mass " << b.inertia.mass << " kg, inertia "
-        << (b.inertiaValid ? "valid"
-                           : (b.inertia.mass > 0.0 ? "point mass or repaired" : "massless"))
+    out << "\n      mass " << b.inertia.mass << " kg, inertia " << inertiaText(b.inertiaStatus)
         << ", " << b.collisions.size() << " collision shape(s)";
     if (!b.skippedMeshes.empty()) out << " (+" << b.skippedMeshes.size() << " meshes not loaded)";
     out << "\n";
