@@ -34,8 +34,12 @@ class SolverChooser {
 
   [[nodiscard]] const ChooserSettings& settings() const { return settings_; }
 
- private:
+  /// The automatic rules alone, on features already measured: sets plan.rule and
+  /// plan.attempts (what choose() does for `auto` after measureProblemFeatures). Public so that
+  /// the rules can be listed from the code that applies them (AutomaticRules.hpp).
   void automatic(const ProblemFeatures& f, SolvePlan& plan) const;
+
+ private:
   ChooserSettings settings_;
 };
 

@@ -33,7 +33,7 @@ UrdfCollisionBuilder::UrdfCollisionBuilder(const UrdfXmlDocument& doc, std::stri
       folder_(std::move(folder)),
       options_(options),
       searchPath_(urdfSearchPath(options.packagePath, folder_)) {
-  for (const auto& [link, mu] : doc.gazeboFriction) gazeboFriction_[link] = mu;
+  gazeboFriction_ = doc.gazebo.friction;
 }
 
 double UrdfCollisionBuilder::frictionOf(const UrdfXmlLink& link) const {

@@ -2,6 +2,7 @@
 // the file first and supplies document order, line numbers and every collision element; fixed
 // joints are fused, then the policies of docs/urdf.md (inertia, limits, axes, mimic) apply.
 #include <coulomb/engine/io/UrdfCollisions.hpp>
+#include <coulomb/engine/io/UrdfInertia.hpp>
 #include <coulomb/engine/io/UrdfLoader.hpp>
 #include <coulomb/engine/io/UrdfXml.hpp>
 
@@ -85,12 +86,13 @@ class ModelBuilder {
     model_.urdfLinkCount = static_cast<int>(doc_.links.size());
     model_.urdfJointCount = static_cast<int>(doc_.joints.size());
     model_.gravity = options_.gravity;
+    model_.gazebo = doc_.gazebo;
     for (std::size_t i = 0; i < doc_.joints.size(); ++i)
       childJoints_[doc_.joints[i].parent].push_back(static_cast<int>(i));
     placeRoot();
     walkTree();
     addInertiasAndCollisions();
-    repairInertias();
+    applyTreeInertiaPolicy(model_.bodies, options_, warnings_);
     collectMimics();
     flushWarnings();
     return std::move(model_);
@@ -245,51 +247,6 @@ class ModelBuilder {
     }
   }
 
-  void repairInertias() {
-    const std::size_t n = model_.bodies.size();
-    std::vector<bool> hasInertia(n, false);
-    for (std::size_t i = n; i-- > 0;) {
-      UrdfBody& body = model_.bodies[i];
-      hasInertia[i] =
-          hasInertia[i] || body.inertia.mass > 0.0 || !body.inertia.inertiaAboutCom.isZero(0.0);
-      if (body.parent >= 0 && hasInertia[i])
-        hasInertia[static_cast<std::size_t>(body.parent)] = true;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      UrdfBody& body = model_.bodies[i];
-      if (body.joint.nv() > 0 && !hasInertia[i]) {
-        // ABA would divide by zero: nothing behind this joint resists its motion.
-        body.inertia = {options_.masslessSubtreeMass, Eigen::Vector3d::Zero(),
-                        options_.masslessSubtreeInertia * Eigen::Matrix3d::Identity()};
-        masslessSubtrees_.push_back(body.name);
-      }
-      body.inertiaValid = !geometry::checkPhysicalValidity(body.inertia).has_value();
-      const bool pointMass = body.inertia.mass > 0.0 && body.inertia.inertiaAboutCom.isZero(0.0);
-      if (body.inertia.mass > 0.0 && !body.inertiaValid && !pointMass) repairTinyInertia(body);
-    }
-  }
-
-  /// Exporter round-off can leave a principal moment <= 0 or break I_a + I_b >= I_c; lift the
-  /// moments just enough (policy in docs/urdf.md) rather than refuse a real file.
-  void repairTinyInertia(UrdfBody& body) {
-    const geometry::PrincipalAxes axes = geometry::principalAxes(body.inertia.inertiaAboutCom);
-    Eigen::Vector3d m = axes.moments;  // ascending
-    const Eigen::Vector3d before = m;
-    const double floor = std::max(1e-9 * std::abs(m[2]), 1e-12);
-    for (int k = 0; k < 3; ++k) m[k] = std::max(m[k], floor);
-    if (m[0] + m[1] < m[2]) {
-      const double lift = 0.5 * (m[2] - m[0] - m[1]);
-      m[0] += lift;
-      m[1] += lift;
-    }
-    const Eigen::Matrix3d r = axes.rotation.toRotationMatrix();
-    body.inertia.inertiaAboutCom = r * m.asDiagonal() * r.transpose();
-    std::ostringstream note;
-    note << "body '" << body.name << "': inertia not physical (principal moments "
-         << before.transpose() << " kg m^2), lifted to " << m.transpose();
-    warnings_.push_back(note.str());
-  }
-
   void collectMimics() {
     std::vector<std::string> names;
     for (const UrdfXmlJoint& xml : doc_.joints) {
@@ -316,15 +273,13 @@ class ModelBuilder {
   }
 
   void flushWarnings() {
+    model_.warnings = doc_.warnings;  // the XML pass's, with their lines, in file order
     auto group = [&](const std::vector<std::string>& names, const std::string& what) {
       if (!names.empty()) model_.warnings.push_back(what + ": " + joinNames(names));
     };
     group(withoutInertial_, "links without <inertial> get zero mass and inertia (URDF default)");
     group(massWithoutMassInertia_,
           "links with mass 0 but a non-zero inertia tensor, kept as given");
-    group(masslessSubtrees_,
-          "moving joints with nothing massive behind them; given a tiny inertia so that ABA "
-          "stays finite");
     group(placeholderLimits_,
           "joints with <limit lower >= upper> (an exporter's placeholder, e.g. 0 0) read as "
           "unlimited");
@@ -344,11 +299,27 @@ class ModelBuilder {
   UrdfModel model_;
   std::map<std::string, std::vector<int>> childJoints_;
   std::priority_queue<int, std::vector<int>, std::greater<>> pending_;
-  std::vector<std::string> warnings_, withoutInertial_, massWithoutMassInertia_, masslessSubtrees_,
-      placeholderLimits_, normalisedAxes_, droppedByUrdfdom_;
+  std::vector<std::string> warnings_, withoutInertial_, massWithoutMassInertia_, placeholderLimits_,
+      normalisedAxes_, droppedByUrdfdom_;
 };
 
 }  // namespace
+
+const char* toString(UrdfInertiaStatus status) {
+  switch (status) {
+    case UrdfInertiaStatus::Physical:
+      return "physical";
+    case UrdfInertiaStatus::PointMass:
+      return "point_mass";
+    case UrdfInertiaStatus::Massless:
+      return "massless";
+    case UrdfInertiaStatus::AsWritten:
+      return "as_written_not_physical";
+    case UrdfInertiaStatus::Repaired:
+      return "repaired";
+  }
+  return "?";
+}
 
 double UrdfModel::totalMass() const {
   double mass = 0.0;

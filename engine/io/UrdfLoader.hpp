@@ -13,6 +13,7 @@
 #include <coulomb/geometry/SpatialInertia.hpp>
 #include <coulomb/joints/tree/Articulation.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -41,8 +42,9 @@ struct UrdfOptions {
   /// Extra folders searched for package:// and relative mesh paths, before the environment
   /// variable COULOMB_PACKAGE_PATH (':'-separated) and the URDF's own folder (docs/urdf.md).
   std::vector<std::filesystem::path> packagePath;
-  /// Friction of a collider: <gazebo reference="link"><mu1> if the file has it, else this map
-  /// by the name of the link's visual <material>, else defaultFriction.
+  /// Friction of a collider: <gazebo reference="link"><mu1> if the file has a valid one (value
+  /// attribute or element text), else this map by the name of the link's visual <material>, else
+  /// defaultFriction.
   std::map<std::string, double> materialFriction;
   double defaultFriction = 0.8;
   /// Inertia given to a body whose whole subtree behind a moving joint is massless (ABA would
@@ -67,6 +69,17 @@ struct UrdfMimic {
   double offset = 0.0;
 };
 
+/// What the loader did with a body's inertia (docs/urdf.md, "Inertia policy").
+enum class UrdfInertiaStatus : std::uint8_t {
+  Physical,   // mass > 0 and a tensor some rigid body has (geometry::checkPhysicalValidity)
+  PointMass,  // mass > 0, zero tensor
+  Massless,   // mass 0 (a frame, or mass 0 with a tensor: kept)
+  AsWritten,  // semidefinite but no rigid body has it (triangle inequality broken, or singular):
+              // kept as the file writes it, with a warning; a tree needs no more
+  Repaired,   // not semidefinite, or a massless subtree behind a moving joint: changed (warning)
+};
+const char* toString(UrdfInertiaStatus status);  // "physical", "point_mass", ...
+
 /// One rigid body of the tree: a URDF link plus every link welded to it by fixed joints.
 struct UrdfBody {
   std::string name;  // the URDF link at the body's frame
@@ -80,6 +93,18 @@ struct UrdfBody {
   double effortLimit = 0.0;                // <limit effort>, 0 = none given
   double velocityLimit = 0.0;              // <limit velocity>, 0 = none given
   bool inertiaValid = true;                // mass > 0 and physically valid (SpatialInertia.hpp)
+  UrdfInertiaStatus inertiaStatus = UrdfInertiaStatus::Physical;
+};
+
+/// What the file's <gazebo> extensions gave (docs/urdf.md, "Gazebo extensions"). Coulomb uses
+/// <mu1> of blocks that reference a link as that link's friction (and counts <mu2> as used when
+/// it equals mu1); every other child, and every block of the whole robot or of a joint, is
+/// ignored and counted here by element name. Invalid values are warnings, never errors.
+struct UrdfGazeboUse {
+  int blocks = 0;                          // <gazebo> elements in the file
+  std::map<std::string, double> friction;  // link -> mu1: its colliders' friction
+  std::map<std::string, int> used;         // element name -> count ("mu1", "mu2")
+  std::map<std::string, int> ignored;      // element name -> count ("plugin", "kp", ...)
 };
 
 struct UrdfFrame {
@@ -96,6 +121,7 @@ struct UrdfModel {
   std::map<std::string, UrdfFrame> frames;  // every URDF link
   std::vector<UrdfMimic> mimics;            // not yet enforced: the followers are free DOFs
   std::vector<std::string> warnings;        // what was repaired, dropped or ignored, and why
+  UrdfGazeboUse gazebo;                     // <gazebo> extensions: used and ignored
   bool floatingBase = false;
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};
 

@@ -1,4 +1,5 @@
 // URDF robots as free bodies and maximal-coordinate joints (UrdfMaximal.hpp, docs/urdf.md).
+#include <coulomb/engine/io/UrdfInertia.hpp>
 #include <coulomb/engine/io/UrdfMaximal.hpp>
 #include <coulomb/joints/tree/TreeKinematics.hpp>
 
@@ -39,6 +40,16 @@ geometry::SpatialInertia freeBodyInertia(const UrdfBody& body, const UrdfMaximal
         symmetric + (options.minimumInertia - smallest) * Eigen::Matrix3d::Identity();
     lifted << " smallest principal moment " << smallest << " -> " << options.minimumInertia
            << " kg m^2";
+  }
+  // The tree keeps tensors that break the triangle inequality (UrdfInertia.hpp); a free body
+  // must be one a real mass distribution has (World::createBody checks it).
+  const Eigen::Matrix3d physical = withTriangleInequality(inertia.inertiaAboutCom);
+  if (physical != inertia.inertiaAboutCom) {
+    lifted << " principal moments "
+           << geometry::principalAxes(inertia.inertiaAboutCom).moments.transpose() << " -> "
+           << geometry::principalAxes(physical).moments.transpose()
+           << " kg m^2 (triangle inequality)";
+    inertia.inertiaAboutCom = physical;
   }
   if (!lifted.str().empty())
     warnings.push_back("body '" + body.name + "': a free body needs mass and inertia:" +

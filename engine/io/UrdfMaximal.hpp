@@ -20,9 +20,11 @@
 namespace coulomb::engine::io {
 
 struct UrdfMaximalOptions {
-  /// A free body needs mass and inertia: lighter bodies get this mass [kg] and tensors whose
-  /// smallest principal moment is below minimumInertia [kg m^2] are raised to it (warnings).
-  /// Massless links of a tree (frames, point masses) are fine in reduced coordinates only.
+  /// A free body needs mass and a physical inertia: lighter bodies get this mass [kg], tensors
+  /// whose smallest principal moment is below minimumInertia [kg m^2] are raised to it, and
+  /// tensors that break the triangle inequality (kept by the tree, docs/urdf.md "Inertia
+  /// policy") have their two smaller moments raised (warnings). Massless links of a tree (frames,
+  /// point masses) and such tensors are fine in reduced coordinates only.
   double minimumMass = 1e-3;
   double minimumInertia = 1e-6;
   /// Shapes of the robot's bodies get this collision category and a mask without it, so that

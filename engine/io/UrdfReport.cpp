@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <iomanip>
+#include <map>
 #include <sstream>
+#include <vector>
 
 namespace coulomb::engine::io {
 namespace {
@@ -46,9 +48,52 @@ json bodyJson(const UrdfModel& model, const UrdfBody& body) {
       {"inertia_about_com",
        {inertia(0, 0), inertia(1, 1), inertia(2, 2), inertia(0, 1), inertia(0, 2), inertia(1, 2)}},
       {"inertia_valid", body.inertiaValid},
+      {"inertia", toString(body.inertiaStatus)},
       {"fused_links", body.fusedLinks},
       {"collisions", collisions},
       {"skipped_meshes", body.skippedMeshes}};
+}
+
+json countsJson(const std::map<std::string, int>& counts) {
+  json out = json::object();
+  for (const auto& [name, count] : counts) out[name] = count;
+  return out;
+}
+
+/// "kd x12, kp x12, plugin x2": element names with their counts, in name order.
+std::string countsText(const std::map<std::string, int>& counts) {
+  std::ostringstream out;
+  for (const auto& [name, count] : counts)
+    out << (out.tellp() > 0 ? ", " : "") << name << " x" << count;
+  return out.str();
+}
+
+void gazeboText(const UrdfGazeboUse& gazebo, std::ostream& out) {
+  if (gazebo.blocks == 0) return;
+  out << "\ngazebo extensions (" << gazebo.blocks << " <gazebo> blocks):\n";
+  out << "  used: " << (gazebo.used.empty() ? "nothing" : countsText(gazebo.used)) << "\n";
+  if (!gazebo.friction.empty()) {
+    out << "  friction (mu1) of " << gazebo.friction.size() << " link(s):";
+    for (const auto& [link, mu] : gazebo.friction) out << " " << link << " " << mu;
+    out << "\n";
+  }
+  out << "  ignored: " << (gazebo.ignored.empty() ? "nothing" : countsText(gazebo.ignored)) << "\n";
+}
+
+const char* inertiaText(UrdfInertiaStatus status) {
+  switch (status) {
+    case UrdfInertiaStatus::Physical:
+      return "valid";
+    case UrdfInertiaStatus::PointMass:
+      return "point mass";
+    case UrdfInertiaStatus::Massless:
+      return "massless";
+    case UrdfInertiaStatus::AsWritten:
+      return "as written, not physical (see warnings)";
+    case UrdfInertiaStatus::Repaired:
+      return "repaired (see warnings)";
+  }
+  return "?";
 }
 
 int velocityCount(const UrdfModel& model) {
@@ -58,6 +103,13 @@ int velocityCount(const UrdfModel& model) {
 }
 
 }  // namespace
+
+UrdfOptions urdfDynamicsOptions(UrdfOptions options) {
+  options.base = UrdfBase::Fixed;
+  options.jointDamping = false;  // pure rigid-body dynamics, as other tools' M, h and ABA
+  options.loadCollisionMeshes = false;
+  return options;
+}
 
 UrdfJointState parseUrdfJointState(const std::string& text, const std::string& source,
                                    const UrdfModel& model) {
@@ -109,11 +161,22 @@ std::string urdfDynamicsJson(const UrdfModel& model, const UrdfJointState& state
   json rows = json::array();
   for (Eigen::Index i = 0; i < mass.rows(); ++i)
     rows.push_back(vectorJson(mass.row(i).transpose()));
+  // The numbers are the file's, so that they can be checked against another tool: say where
+  // they are not (docs/urdf.md, "Inertia policy").
+  std::vector<std::string> repaired, notPhysical;
+  for (const UrdfBody& body : model.bodies) {
+    if (body.inertiaStatus == UrdfInertiaStatus::Repaired) repaired.push_back(body.name);
+    if (body.inertiaStatus == UrdfInertiaStatus::AsWritten) notPhysical.push_back(body.name);
+  }
   const json out = {
       {"joints", model.dofNames},
       {"qddot", vectorJson(qdd)},
       {"mass_matrix", rows},
-      {"bias_forces", vectorJson(joints::tree::biasForces(tree, state.q, state.qdot))}};
+      {"bias_forces", vectorJson(joints::tree::biasForces(tree, state.q, state.qdot))},
+      {"inertias",
+       {{"as_written", repaired.empty()},
+        {"repaired", repaired},
+        {"not_physical_kept", notPhysical}}}};
   return out.dump() + "\n";
 }
 
@@ -136,6 +199,11 @@ std::string urdfInfoJson(const UrdfModel& model) {
                     {"total_mass", model.totalMass()},
                     {"bodies", bodies},
                     {"mimics", mimics},
+                    {"gazebo",
+                     {{"blocks", model.gazebo.blocks},
+                      {"friction", model.gazebo.friction},
+                      {"used", countsJson(model.gazebo.used)},
+                      {"ignored", countsJson(model.gazebo.ignored)}}},
                     {"warnings", model.warnings}};
   return out.dump(2) + "\n";
 }
@@ -159,9 +227,7 @@ std::string urdfInfoText(const UrdfModel& model) {
         << " by " << joints::tree::toString(b.joint.type) << " '" << b.joint.name << "'";
     if (b.joint.nv() == 1) out << " axis (" << b.joint.axis.transpose() << ")";
     if (std::isfinite(b.joint.lower)) out << " [" << b.joint.lower << ", " << b.joint.upper << "]";
-    out << "\n      mass " << b.inertia.mass << " kg, inertia "
-        << (b.inertiaValid ? "valid"
-                           : (b.inertia.mass > 0.0 ? "point mass or repaired" : "massless"))
+    out << "\n      mass " << b.inertia.mass << " kg, inertia " << inertiaText(b.inertiaStatus)
         << ", " << b.collisions.size() << " collision shape(s)";
     if (!b.skippedMeshes.empty()) out << " (+" << b.skippedMeshes.size() << " meshes not loaded)";
     out << "\n";
@@ -178,6 +244,7 @@ std::string urdfInfoText(const UrdfModel& model) {
       out << "  " << m.joint << " = " << m.multiplier << " * " << m.leader << " + " << m.offset
           << "\n";
   }
+  gazeboText(model.gazebo, out);
   out << "\nwarnings (" << model.warnings.size() << "):\n";
   for (const std::string& w : model.warnings) out << "  - " << w << "\n";
   return out.str();

@@ -21,14 +21,22 @@ struct UrdfJointState {
 UrdfJointState parseUrdfJointState(const std::string& text, const std::string& source,
                                    const UrdfModel& model);
 
-/// {"joints": [...], "qddot": [...], "mass_matrix": [[...]], "bias_forces": [...]} for a model
-/// whose joints all have one DOF (fixed base), numbers in shortest round-trip form.
+/// How `coulomb urdf dynamics` loads a robot: `options` with a fixed base, no joint damping (pure
+/// rigid-body dynamics, as other tools' M, h and ABA) and no meshes.
+UrdfOptions urdfDynamicsOptions(UrdfOptions options = {});
+
+/// {"joints": [...], "qddot": [...], "mass_matrix": [[...]], "bias_forces": [...],
+///  "inertias": {"as_written": bool, "repaired": [bodies], "not_physical_kept": [bodies]}} for a
+/// model whose joints all have one DOF (fixed base), numbers in shortest round-trip form. The
+/// inertias are the file's (docs/urdf.md, "Inertia policy") except the bodies listed repaired.
 std::string urdfDynamicsJson(const UrdfModel& model, const UrdfJointState& state);
 
 /// The tree for people: bodies with their joints, masses, inertia validity, fused links and
-/// collision shapes, then mimic couplings and warnings.
+/// collision shapes, then mimic couplings, the <gazebo> extensions used and ignored, and
+/// warnings.
 std::string urdfInfoText(const UrdfModel& model);
-/// The same as JSON, with "dofs" (velocity coordinates) and "joints" (DOF joint names in order).
+/// The same as JSON, with "dofs" (velocity coordinates), "joints" (DOF joint names in order) and
+/// "gazebo" ({"blocks", "friction": {link: mu1}, "used": {element: count}, "ignored": {...}}).
 std::string urdfInfoJson(const UrdfModel& model);
 
 }  // namespace coulomb::engine::io

@@ -1,4 +1,5 @@
 #include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/io/UrdfGazebo.hpp>
 #include <coulomb/engine/io/UrdfXml.hpp>
 
 #include <tinyxml.h>
@@ -312,6 +313,7 @@ UrdfXmlDocument readUrdfXml(const std::string& text, const std::string& source) 
   UrdfXmlDocument doc;
   if (const char* name = robot->Attribute("name")) doc.robotName = name;
   bool xacro = robot->Attribute("xmlns:xacro") != nullptr;
+  UrdfGazeboReader gazebo(source);
   for (const TiXmlElement* e = robot->FirstChildElement(); e != nullptr;
        e = e->NextSiblingElement()) {
     const std::string tag = e->Value();
@@ -320,13 +322,7 @@ UrdfXmlDocument readUrdfXml(const std::string& text, const std::string& source) 
     } else if (tag == "joint") {
       doc.joints.push_back(check.joint(e));
     } else if (tag == "gazebo") {
-      const char* reference = e->Attribute("reference");
-      const TiXmlElement* mu = e->FirstChildElement("mu1");
-      if (reference != nullptr && mu != nullptr) {
-        const double value = check.number(mu, "value", -1.0, "<gazebo> <mu1>");
-        if (value < 0.0) check.fail(mu, "<gazebo> <mu1>", "value must be >= 0");
-        doc.gazeboFriction.emplace_back(reference, value);
-      }
+      gazebo.add(*e);
     } else if (tag.rfind("xacro:", 0) == 0) {
       xacro = true;
     }
@@ -335,6 +331,10 @@ UrdfXmlDocument readUrdfXml(const std::string& text, const std::string& source) 
     check.fail(robot, "<robot>",
                std::string("no <link> elements found.") + (xacro ? kXacroHint : ""));
   check.checkTree(doc, robot);
+  std::set<std::string> links, joints;
+  for (const UrdfXmlLink& link : doc.links) links.insert(link.name);
+  for (const UrdfXmlJoint& joint : doc.joints) joints.insert(joint.name);
+  doc.gazebo = gazebo.finish(links, joints, doc.warnings);
   return doc;
 }
 

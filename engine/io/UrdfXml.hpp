@@ -3,7 +3,8 @@
 // TinyXML (the parser urdfdom 3 itself uses) that checks what urdfdom would refuse or accept
 // silently, with line numbers and a fix in every message, and collects what urdfdom loses:
 // document order of links and joints, every <collision> (including Bullet's <capsule>, which
-// urdfdom drops), visual material names and <gazebo reference><mu1> friction.
+// urdfdom drops), visual material names and the <gazebo> extensions (UrdfGazebo.hpp).
+#include <coulomb/engine/io/UrdfLoader.hpp>
 #include <coulomb/geometry/Pose.hpp>
 
 #include <Eigen/Core>
@@ -44,16 +45,17 @@ struct UrdfXmlJoint {
 
 struct UrdfXmlDocument {
   std::string robotName;
-  std::vector<UrdfXmlLink> links;                              // document order
-  std::vector<UrdfXmlJoint> joints;                            // document order
-  std::vector<std::pair<std::string, double>> gazeboFriction;  // <gazebo reference><mu1>
+  std::vector<UrdfXmlLink> links;     // document order
+  std::vector<UrdfXmlJoint> joints;   // document order
+  UrdfGazeboUse gazebo;               // <gazebo> extensions
+  std::vector<std::string> warnings;  // "<file>:<line>: ..." for values dropped, in file order
 };
 
 /// Throws CoulombError "<source>:<line>: <element>: <problem>. <fix>" for malformed XML, a root
 /// that is not <robot> (xacro hint), no links, missing or duplicate names, unknown joint types,
 /// joints naming undeclared links (the undeclared `world` of Drake files), a link with two parent
 /// joints, a cycle, several roots, non-finite or malformed numbers, negative mass, and invalid
-/// geometry sizes.
+/// geometry sizes. <gazebo> extensions never throw (UrdfGazebo.hpp): their problems are warnings.
 UrdfXmlDocument readUrdfXml(const std::string& text, const std::string& source);
 
 /// R = Rz(yaw) Ry(pitch) Rx(roll), URDF's fixed-axis roll-pitch-yaw.

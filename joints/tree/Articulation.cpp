@@ -14,23 +14,34 @@ std::string describe(const TreeLink& link, int index) {
   return out.str();
 }
 
+/// What the tree's algorithms need of a link's inertia: finite, mass >= 0, a symmetric positive
+/// semidefinite tensor. Nothing more: the triangle inequality of the principal moments (which
+/// every real mass distribution satisfies, geometry::checkPhysicalValidity) is not needed by ABA,
+/// RNEA or CRBA, and URDF files from CAD often break it (docs/urdf.md, "Inertia policy"). A
+/// joint whose subtree offers no inertia along its motion is caught where it matters, by ABA's
+/// D^-1 (TreeDynamics.hpp).
 void validateInertia(const TreeLink& link, int index) {
   const geometry::SpatialInertia& inertia = link.inertia;
   const bool finite = std::isfinite(inertia.mass) && inertia.centerOfMass.allFinite() &&
                       inertia.inertiaAboutCom.allFinite();
   if (!finite)
     throw std::invalid_argument(describe(link, index) + ": inertia has a non-finite value");
-  if (inertia.mass == 0.0) {  // a frame (URDF link without <inertial>): inertia >= 0 only
-    const Eigen::Matrix3d& i = inertia.inertiaAboutCom;
-    if (!i.isApprox(i.transpose(), 1e-12) ||
-        geometry::principalAxes(i).moments.minCoeff() < -1e-12 * (1.0 + i.norm()))
-      throw std::invalid_argument(describe(link, index) +
-                                  ": a massless link's inertia must be symmetric and >= 0");
-    return;
+  if (inertia.mass < 0.0) {
+    std::ostringstream out;
+    out << describe(link, index) << ": invalid inertia: mass must be >= 0 (got " << inertia.mass
+        << ")";
+    throw std::invalid_argument(out.str());
   }
-  if (inertia.inertiaAboutCom.isZero(0.0) && inertia.mass > 0.0) return;  // a point mass
-  if (const auto problem = geometry::checkPhysicalValidity(inertia))
-    throw std::invalid_argument(describe(link, index) + ": invalid inertia: " + *problem);
+  const Eigen::Matrix3d& i = inertia.inertiaAboutCom;
+  const Eigen::Vector3d moments = geometry::principalAxes(i).moments;  // ascending
+  if (!i.isApprox(i.transpose(), 1e-9) || moments[0] < -1e-12 * (1.0 + i.norm())) {
+    std::ostringstream out;
+    out << describe(link, index)
+        << ": invalid inertia: the tensor must be symmetric and positive semidefinite (principal "
+           "moments "
+        << moments.transpose() << " kg m^2)";
+    throw std::invalid_argument(out.str());
+  }
 }
 }  // namespace
 

@@ -30,10 +30,9 @@ struct TreeLink {
 class Articulation {
  public:
   /// Validates every link and joint; throws std::invalid_argument naming the link (and joint) on
-  /// a parent index not before the link, a bad joint (TreeJoint::validate), a non-finite or
-  /// physically invalid inertia (geometry::checkPhysicalValidity when mass > 0, or a point mass
-  /// with zero rotational inertia; a massless link
-  /// needs a symmetric positive semi-definite inertia, usually zero), or non-finite gravity.
+  /// a parent index not before the link, a bad joint (TreeJoint::validate), a non-finite inertia,
+  /// a negative mass or a tensor that is not symmetric positive semidefinite (all a tree needs:
+  /// the triangle inequality is not required, docs/articulations.md), or non-finite gravity.
   explicit Articulation(std::vector<TreeLink> links,
                         const Eigen::Vector3d& gravity = Eigen::Vector3d(0.0, 0.0, -9.81));
 

@@ -1,5 +1,7 @@
-// `coulomb solvers` (the registry, one line each) and `coulomb solve FILE.fc3d` (one JSON line per
-// solver: problem, contacts, solver, status, iterations, seconds, common residual).
+// `coulomb solvers` (the registry, one line each, then `auto` and its rules) and `coulomb solve
+// FILE.fc3d` (one JSON line per solver: problem, contacts, solver, status, iterations, seconds,
+// common residual).
+#include <coulomb/solvers/AutomaticRules.hpp>
 #include <coulomb/solvers/SolveWithFallback.hpp>
 #include <coulomb/solvers/SolverChooser.hpp>
 #include <coulomb/solvers/SolverRegistry.hpp>
@@ -142,11 +144,14 @@ void runSolve(const SolveArgs& a) {
 }  // namespace
 
 void registerSolverCommands(CLI::App& app) {
-  app.add_subcommand("solvers", "List the contact solvers of the registry, one line each")
+  app.add_subcommand("solvers",
+                     "List the contact solvers of the registry, one line each, then auto (the "
+                     "default) with the chain of solvers of each of its rules")
       ->callback([] {
         const solvers::SolverRegistry registry = solvers::SolverRegistry::builtIn();
         for (const solvers::SolverEntry& e : registry.entries())
           std::cout << e.name << "\t" << e.summary << "\n";
+        std::cout << solvers::automaticListing();  // the default is no registry entry
       });
 
   auto args = std::make_shared<SolveArgs>();
@@ -158,8 +163,9 @@ void registerSolverCommands(CLI::App& app) {
   solve
       ->add_option(
           "--solver", args->solver,
-          "solver name (see `coulomb solvers`), all, auto (per-problem choice with fallbacks), "
-          "a chain a,b,c, or name! (no fallback)")
+          "solver name (see `coulomb solvers`), all, auto (the default of simulations: a "
+          "chain of solvers per problem by the rules `coulomb solvers` lists), a chain a,b,c, "
+          "or name! (no fallback)")
       ->capture_default_str();
   solve->add_option("--tol", args->tolerance, "tolerance on the common relative residual")
       ->capture_default_str()

@@ -44,11 +44,8 @@ void runInfo(const UrdfArguments& a) {
 }
 
 void runDynamics(const UrdfArguments& a) {
-  engine::io::UrdfOptions options = optionsFrom(a);
-  options.base = engine::io::UrdfBase::Fixed;
-  options.jointDamping = false;  // pure rigid-body dynamics, as other tools' M, h and ABA
-  options.loadCollisionMeshes = false;
-  const engine::io::UrdfModel model = engine::io::loadUrdfFile(a.file, options);
+  const engine::io::UrdfModel model =
+      engine::io::loadUrdfFile(a.file, engine::io::urdfDynamicsOptions(optionsFrom(a)));
   std::ifstream in(a.statePath);
   if (!in) throw CommandError(a.statePath + ": cannot open the state file");
   std::ostringstream text;
@@ -75,8 +72,9 @@ void registerUrdfCommands(CLI::App& app) {
   auto dynamics = std::make_shared<UrdfArguments>();
   CLI::App* dynamicsCommand = urdf->add_subcommand(
       "dynamics",
-      "Forward dynamics (fixed base, no damping) at a state given by joint name: prints joints, "
-      "qddot, mass_matrix, bias_forces as JSON");
+      "Forward dynamics (fixed base, no damping) at a state given by joint name, with the "
+      "file's inertias as written (only tensors the algorithm cannot use are repaired, and named): "
+      "prints joints, qddot, mass_matrix, bias_forces, inertias as JSON");
   addCommonOptions(dynamicsCommand, dynamics);
   dynamicsCommand
       ->add_option("--state", dynamics->statePath,

@@ -1,6 +1,7 @@
 // Articulation construction: indices, sizes, and loud failures that name the link or joint.
 #include <gtest/gtest.h>
 #include <coulomb/joints/tree/Articulation.hpp>
+#include <coulomb/joints/tree/TreeDynamics.hpp>
 
 #include <cmath>
 #include <stdexcept>
@@ -53,10 +54,14 @@ TEST(Articulation, BadModelsFailWithTheLinkOrJointName) {
        {"late", 2, TreeJoint::revolute("k", {}, Eigen::Vector3d::UnitZ()), unitBody()},
        {"b", 0, TreeJoint::revolute("m", {}, Eigen::Vector3d::UnitZ()), unitBody()}},
       "late");
-  SpatialInertia flat = unitBody();
-  flat.inertiaAboutCom = Eigen::Vector3d(0.1, 0.1, 0.5).asDiagonal();  // triangle inequality
+  SpatialInertia saddle = unitBody();
+  saddle.inertiaAboutCom = Eigen::Vector3d(0.1, -0.1, 0.5).asDiagonal();  // not semidefinite
   expectErrorMentioning(
-      {{"plate", -1, TreeJoint::revolute("j", {}, Eigen::Vector3d::UnitZ()), flat}}, "plate");
+      {{"saddle", -1, TreeJoint::revolute("j", {}, Eigen::Vector3d::UnitZ()), saddle}},
+      "positive semidefinite");
+  SpatialInertia negative = unitBody();
+  negative.mass = -1.0;
+  expectErrorMentioning({{"antimatter", -1, TreeJoint::fixed("j", {}), negative}}, "antimatter");
   SpatialInertia nan = unitBody();
   nan.centerOfMass.x() = std::nan("");
   expectErrorMentioning({{"ghost", -1, TreeJoint::fixed("j", {}), nan}}, "ghost");
@@ -66,6 +71,20 @@ TEST(Articulation, BadModelsFailWithTheLinkOrJointName) {
   TreeJoint damped = TreeJoint::revolute("damper", {}, Eigen::Vector3d::UnitZ());
   damped.damping = -1.0;
   expectErrorMentioning({{"l", -1, damped, unitBody()}}, "damper");
+}
+
+TEST(Articulation, TensorsBreakingTheTriangleInequalityAreAllowed) {
+  // Positive definite but I1 + I2 < I3: no mass distribution has these moments, yet ABA needs
+  // only definiteness (docs/articulations.md); CAD-exported URDFs are full of them.
+  SpatialInertia flat = unitBody();
+  flat.inertiaAboutCom = Eigen::Vector3d(0.1, 0.1, 0.5).asDiagonal();
+  const Articulation tree(
+      {{"plate", -1, TreeJoint::revolute("j", {}, Eigen::Vector3d::UnitZ()), flat}},
+      Eigen::Vector3d::Zero());
+  // About z through the COM: qdd = tau / Izz, the file's 0.5 and not a "repaired" moment.
+  EXPECT_DOUBLE_EQ(forwardDynamics(tree, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1),
+                                   Eigen::VectorXd::Ones(1))[0],
+                   2.0);
 }
 
 TEST(Articulation, MasslessFramesAreAllowed) {
