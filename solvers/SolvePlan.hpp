@@ -16,7 +16,7 @@ namespace coulomb::solvers {
 /// plan so that a report can show them next to the reason.
 struct ProblemFeatures {
   int contacts = 0;          // Contact3D blocks
-  int activeContacts = 0;    // q_N <= 0 or warm-start r_N > 0 (likely to carry load)
+  int activeContacts = 0;    // q_N < 0 or warm-start r_N > 0 (likely to carry load)
   int equalityRows = 0;      // bilateral (joint) rows
   int boundedRows = 0;       // motors, joint friction with a constant bound
   int unilateralRows = 0;    // limits, frictionless contacts

@@ -59,10 +59,7 @@ ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
     ++f.contacts;
     f.zeroIsExact = f.zeroIsExact && qN >= 0;
     const bool warm = problem.warmStart && (*problem.warmStart)[row] > 0;
-    // A contact that does not separate (q_N <= 0) carries load as soon as anything pushes: the
-    // touching boxes of a stack on its first step have q_N = 0 exactly (they fall together),
-    // and counting only q_N < 0 made a fresh pyramid look like 40 loose contacts.
-    if (!(qN <= 0 || warm)) continue;
+    if (!(qN < 0 || warm)) continue;
     ++f.activeContacts;
     double w = 0;
     if (diagonalKnown && normalDiagonal(problem, row, static_cast<int>(b), w) && w > 0) {
