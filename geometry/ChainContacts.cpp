@@ -30,9 +30,13 @@ bool byGroup(const SphereCapsuleContact& l, const SphereCapsuleContact& r) {
 
 void dropCoveredCapsuleEnds(const std::vector<Collider>& colliders,
                             std::span<const Pose> shapePoses,
-                            std::vector<ContactManifold>& manifolds) {
+                            std::vector<ContactManifold>& manifolds,
+                            std::vector<std::tuple<ColliderId, BodyId, std::size_t>>* keyList) {
   // Cheap exit first: a ghost needs two single-point manifolds of one collider with one body.
-  std::vector<std::tuple<ColliderId, BodyId, std::size_t>> keys;
+  std::vector<std::tuple<ColliderId, BodyId, std::size_t>> local;
+  std::vector<std::tuple<ColliderId, BodyId, std::size_t>>& keys =
+      keyList != nullptr ? *keyList : local;
+  keys.clear();
   for (std::size_t m = 0; m < manifolds.size(); ++m) {
     if (manifolds[m].pointCount != 1) continue;
     keys.emplace_back(manifolds[m].colliderA, manifolds[m].bodyB, m);

@@ -12,6 +12,7 @@
 #include <coulomb/geometry/Pose.hpp>
 
 #include <span>
+#include <tuple>
 #include <vector>
 
 namespace coulomb::geometry {
@@ -22,8 +23,10 @@ namespace coulomb::geometry {
 /// kept). Exact, not a heuristic: the removed cap is a subset of the capsule kept, so the
 /// distance to the body is unchanged. `shapePoses` are the colliders' world poses, parallel to
 /// `colliders`; the manifolds keep their order.
-void dropCoveredCapsuleEnds(const std::vector<Collider>& colliders,
-                            std::span<const Pose> shapePoses,
-                            std::vector<ContactManifold>& manifolds);
+/// `keys`: the cheap first test's list, kept by the caller for its storage (null: a local one).
+void dropCoveredCapsuleEnds(
+    const std::vector<Collider>& colliders, std::span<const Pose> shapePoses,
+    std::vector<ContactManifold>& manifolds,
+    std::vector<std::tuple<ColliderId, BodyId, std::size_t>>* keys = nullptr);
 
 }  // namespace coulomb::geometry

@@ -95,7 +95,8 @@ const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Co
   fresh_.clear();
   narrowPhase_.collide(pairs, colliders, shapePoses_, bodyPoses, scene_, fresh_,
                        diagnostics_.failures, sweeps_);
-  dropCoveredCapsuleEnds(colliders, shapePoses_, fresh_);  // ghost points of capsule chains
+  dropCoveredCapsuleEnds(colliders, shapePoses_, fresh_,
+                         &capsuleEndKeys_);  // ghost points of capsule chains
 
   diagnostics_.stats.candidatePairs = pairs.size();
   diagnostics_.stats.touchingPairs = fresh_.size();

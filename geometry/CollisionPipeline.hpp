@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace coulomb::geometry {
@@ -89,6 +90,7 @@ class CollisionPipeline {
   std::vector<double> sweeps_;  // [m] per collider (SweptMargin.hpp)
   std::vector<ContactManifold> fresh_;
   std::vector<std::size_t> order_;  // colliders by id (duplicate check)
+  std::vector<std::tuple<ColliderId, BodyId, std::size_t>> capsuleEndKeys_;
 };
 
 }  // namespace coulomb::geometry

@@ -20,7 +20,7 @@ void BodySpaceDelassus::reset(int bodyCount) {
   if (bodyCount < 0) throw std::invalid_argument("BodySpaceDelassus: negative body count");
   bodies_ = bodyCount;
   nonFinite_ = rescan_ = false;
-  entries_.reset();
+  entriesValid_ = false;
   diagonal_.clear();
   offset_.assign(size_.size() + 1, 0);
   for (std::size_t b = 0; b < size_.size(); ++b) {
@@ -58,7 +58,7 @@ void BodySpaceDelassus::setSide(int block, int side, int body,
     noteSideSet(block, side, &g_[(2 * row + side) * 6], 6);
   }
   body_[2 * block + side] = body;
-  entries_.reset();
+  entriesValid_ = false;
   diagonal_.clear();
 }
 
@@ -74,7 +74,7 @@ void BodySpaceDelassus::setSide(int block, int side, int body, const double* J, 
     std::copy_n(J + 6 * a, 6, &j_[first + 12 * a]);
     std::copy_n(G + 6 * a, 6, &g_[first + 12 * a]);
   }
-  entries_.reset();
+  entriesValid_ = false;
   diagonal_.clear();
 }
 
@@ -151,42 +151,53 @@ bool BodySpaceDelassus::allFinite() const {
 }
 
 const BlockSparseMatrix& BodySpaceDelassus::toBlockSparse() const {
-  if (entries_) return *entries_;
-  // Blocks on each body, ascending (each block at most once per body).
-  std::vector<std::vector<int>> onBody(bodies_);
+  if (entriesValid_) return entries_;
+  // Blocks on each body, ascending (each block at most once per body), as CSR over bodies.
+  CsrScratch& w = csr_;
+  w.bodyStart.assign(bodies_ + 1, 0);
   for (int b = 0; b < blockCount(); ++b)
     for (int side = 0; side < 2; ++side) {
       const int body = body_[2 * b + side];
-      if (body >= 0 && (onBody[body].empty() || onBody[body].back() != b))
-        onBody[body].push_back(b);
+      if (body >= 0 && !(side == 1 && body_[2 * b] == body)) ++w.bodyStart[body + 1];
     }
-  std::vector<int> rowStart{0}, columns, candidates;
-  std::vector<double> values;
+  for (int body = 0; body < bodies_; ++body) w.bodyStart[body + 1] += w.bodyStart[body];
+  w.bodyBlocks.resize(w.bodyStart.back());
+  w.next.assign(w.bodyStart.begin(), w.bodyStart.end() - 1);
+  for (int b = 0; b < blockCount(); ++b)
+    for (int side = 0; side < 2; ++side) {
+      const int body = body_[2 * b + side];
+      if (body >= 0 && !(side == 1 && body_[2 * b] == body)) w.bodyBlocks[w.next[body]++] = b;
+    }
+  w.rowStart.assign(1, 0);
+  w.columns.clear();
+  w.values.clear();
   for (int b = 0; b < blockCount(); ++b) {
-    candidates.assign(1, b);  // the diagonal block is always stored
-    for (int side = 0; side < 2; ++side)
-      if (body_[2 * b + side] >= 0)
-        candidates.insert(candidates.end(), onBody[body_[2 * b + side]].begin(),
-                          onBody[body_[2 * b + side]].end());
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    for (const int j : candidates) {
-      columns.push_back(j);
+    w.candidates.assign(1, b);  // the diagonal block is always stored
+    for (int side = 0; side < 2; ++side) {
+      const int body = body_[2 * b + side];
+      if (body >= 0)
+        w.candidates.insert(w.candidates.end(), w.bodyBlocks.begin() + w.bodyStart[body],
+                            w.bodyBlocks.begin() + w.bodyStart[body + 1]);
+    }
+    std::sort(w.candidates.begin(), w.candidates.end());
+    w.candidates.erase(std::unique(w.candidates.begin(), w.candidates.end()), w.candidates.end());
+    for (const int j : w.candidates) {
+      w.columns.push_back(j);
       for (int a = 0; a < size_[b]; ++a)
         for (int c = 0; c < size_[j]; ++c) {
-          double w = 0.0;
+          double value = 0.0;
           for (int s = 0; s < 2; ++s)
             for (int t = 0; t < 2; ++t)
               if (body_[2 * b + s] >= 0 && body_[2 * b + s] == body_[2 * j + t])
-                w += dot6(J(offset_[b] + a, s), G(offset_[j] + c, t));
-          values.push_back(w);
+                value += dot6(J(offset_[b] + a, s), G(offset_[j] + c, t));
+          w.values.push_back(value);
         }
     }
-    rowStart.push_back(static_cast<int>(columns.size()));
+    w.rowStart.push_back(static_cast<int>(w.columns.size()));
   }
-  entries_ = std::make_shared<const BlockSparseMatrix>(BlockSparseMatrix::fromBlockCsr(
-      size_, std::move(rowStart), std::move(columns), std::move(values)));
-  return *entries_;
+  entries_.assignBlockCsr(size_, w.rowStart, w.columns, w.values);
+  entriesValid_ = true;
+  return entries_;
 }
 
 }  // namespace coulomb::solvers

@@ -95,8 +95,15 @@ class BodySpaceDelassus {
   std::vector<double> j_, g_;  // 2 x 6 per row: J_s row and G_s column of side s
   bool nonFinite_ = false;     // a value copied by setSide was inf or NaN
   bool rescan_ = false;        // a side was set twice: allFinite() checks the stored values
-  mutable std::shared_ptr<const BlockSparseMatrix> entries_;  // toBlockSparse() cache
-  mutable std::vector<double> diagonal_;                      // diagonalBlocks() cache, 9 per block
+  // toBlockSparse() cache and the lists it is built from, kept for their storage.
+  struct CsrScratch {
+    std::vector<int> bodyStart, bodyBlocks, next, rowStart, columns, candidates;
+    std::vector<double> values;
+  };
+  mutable BlockSparseMatrix entries_;
+  mutable bool entriesValid_ = false;
+  mutable CsrScratch csr_;
+  mutable std::vector<double> diagonal_;  // diagonalBlocks() cache, 9 per block
   // multiplyAdd's dv, kept for its storage: like the caches above, a const call writes it, so one
   // operator is not for two threads at once.
   mutable Eigen::VectorXd productVelocities_;

@@ -37,6 +37,9 @@ void SolverReport::reset() {
   keptHistory.clear();
   solver = std::move(keptSolver);
   nativeResidualName = std::move(keptName);
+  // Solvers name their measure with literals of under 64 characters: with this capacity a reused
+  // report takes any of them without allocating, whichever solver wrote it last.
+  nativeResidualName.reserve(64);
   message = std::move(keptMessage);
   history = std::move(keptHistory);
 }

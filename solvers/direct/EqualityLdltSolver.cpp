@@ -1,8 +1,5 @@
 #include <coulomb/solvers/direct/EqualityLdltSolver.hpp>
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
-
 #include <vector>
 
 namespace coulomb::solvers {
@@ -19,9 +16,12 @@ void EqualityLdltSolver::solvePrepared(const PreparedProblem& p, const SolveCont
                                        Eigen::VectorXd& r, SolverReport& report) const {
   const BlockSparseMatrix& W = p.W;
   const int n = p.size();
-  // Lower triangle only (SimplicialLDLT reads the lower part), straight from the block rows.
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(W.rowEnd(W.blockCount() - 1)) * 3);
+  // The lower triangle, straight from the block rows, in a fixed order: the pattern of the last
+  // solve is recognised and its analysis (ordering, elimination tree) reused.
+  Workspace& w = workspace_;
+  w.rows.clear();
+  w.cols.clear();
+  w.values.clear();
   for (int b = 0; b < W.blockCount(); ++b) {
     const int rb = W.blockOffset(b), sb = W.blockSize(b);
     for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
@@ -29,29 +29,30 @@ void EqualityLdltSolver::solvePrepared(const PreparedProblem& p, const SolveCont
       const double* v = W.blockValues(k);
       for (int i = 0; i < sb; ++i)
         for (int j = 0; j < sc; ++j)
-          if (rc + j <= rb + i && v[sc * i + j] != 0.0)
-            entries.emplace_back(rb + i, rc + j, v[sc * i + j]);
+          if (rc + j <= rb + i) {
+            w.rows.push_back(rb + i);
+            w.cols.push_back(rc + j);
+            w.values.push_back(v[sc * i + j]);
+          }
     }
   }
-  Eigen::SparseMatrix<double> lower(n, n);
-  lower.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt(lower);
+  if (!w.ldlt.analyzed(n, w.rows, w.cols)) w.ldlt.analyze(n, w.rows, w.cols);
   report.iterations = 1;
   report.nativeResidualName = "common residual of the direct solve";
-  if (ldlt.info() != Eigen::Success) {
+  if (!w.ldlt.factorize(w.values)) {
     report.status = SolverStatus::NumericalFailure;
     report.note("LDL^T factorization failed (W singular: redundant rows?)");
     return;
   }
-  const Eigen::VectorXd x = ldlt.solve(-p.q);
-  if (!x.allFinite()) {
+  w.rhs = -p.q;
+  w.ldlt.solve(w.rhs, w.x);
+  if (!w.x.allFinite()) {
     report.status = SolverStatus::NumericalFailure;
     report.note("LDL^T solve not finite (W singular: redundant rows?)");
     return;
   }
-  r = x;
-  Eigen::VectorXd u;
-  const double e = p.residual(r, u);
+  r = w.x;
+  const double e = p.residual(r, w.u);
   context.record(report, 1, e);
   report.nativeResidual = e;
   report.status = e <= context.tolerance() ? SolverStatus::Converged : SolverStatus::Stalled;

@@ -1,14 +1,17 @@
 #pragma once
 // Problems made of equality rows only (a joint island without limits, motors or contacts): the
-// linear system W r = -q solved directly by a sparse LDL^T factorization (Eigen's
-// SimplicialLDLT, approximate minimum degree ordering). For a joint island whose bodies and joints
-// form a tree (a chain, a rope, a branching mechanism), W = J M^-1 J^T couples only joints that
-// share a body, and the elimination ordering follows the tree with no fill-in beyond the body
-// cliques: linear time in the number of joints, the direct solve of Baraff 1996 ("Linear-time
-// dynamics using Lagrange multipliers", section 7) in Delassus form. A loop (redundant rows, W
-// singular) may factor with a tiny pivot: the common residual then decides, and the plan's
-// fallback (ac_newton) takes over.
+// linear system W r = -q solved directly by a sparse LDL^T factorization (SparseLdlt: approximate
+// minimum degree ordering, analysed once per pattern, then factorizations without allocation). For
+// a joint island whose bodies and joints form a tree (a chain, a rope, a branching mechanism), W =
+// J M^-1 J^T couples only joints that share a body, and the elimination ordering follows the tree
+// with no fill-in beyond the body cliques: linear time in the number of joints, the direct solve of
+// Baraff 1996 ("Linear-time dynamics using Lagrange multipliers", section 7) in Delassus form. A
+// loop (redundant rows, W singular) may factor with a tiny pivot: the common residual then decides,
+// and the plan's fallback (ac_newton) takes over.
 #include <coulomb/solvers/ContactSolver.hpp>
+#include <coulomb/solvers/direct/SparseLdlt.hpp>
+
+#include <vector>
 
 namespace coulomb::solvers {
 
@@ -19,6 +22,15 @@ class EqualityLdltSolver final : public ContactSolver {
       const ContactProblem& problem) const override;
   void solvePrepared(const PreparedProblem& problem, const SolveContext& context,
                      Eigen::VectorXd& r, SolverReport& report) const override;
+
+ private:
+  struct Workspace {  // kept between solves (ContactSolver::solve: one instance, one thread)
+    SparseLdlt ldlt;
+    std::vector<int> rows, cols;
+    std::vector<double> values;
+    Eigen::VectorXd rhs, x, u;
+  };
+  mutable Workspace workspace_;
 };
 
 }  // namespace coulomb::solvers

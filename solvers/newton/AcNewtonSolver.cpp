@@ -13,8 +13,8 @@ namespace {
 
 // Proximal point (5.9) from r (best so far): subproblems FC(W + sigma I, q - sigma r_k).
 void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const AcNewtonOptions& o,
-                  const SolveContext& context, int budget, Eigen::VectorXd& r,
-                  SolverReport& report) {
+                  const SolveContext& context, int budget, Eigen::VectorXd& r, SolverReport& report,
+                  NewtonWorkspace& workspace) {
   double meanDiag = 0;
   for (int i = 0; i < p.size(); ++i) meanDiag += p.diagonal(i);
   meanDiag /= std::max(1, p.size());
@@ -22,9 +22,8 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
   Eigen::VectorXd u, best = r;
   double e = p.residual(r, u), bestE = e;
   PreparedProblem inner = p;
-  // One linear solver for all subproblems: W + sigma I keeps W's structure, so the sparse pattern
-  // and its symbolic analysis carry over from one subproblem to the next.
-  NewtonLinearSolver linear(o.newton.denseThreshold, o.newton.sparseMaxDensity);
+  // One workspace (and linear solver) for all subproblems: W + sigma I keeps W's structure, so
+  // the sparse pattern and its symbolic analysis carry over from one subproblem to the next.
   const double tol = context.tolerance();
   int outer = 0, used = 0;
   while (used < budget && bestE > tol) {
@@ -41,7 +40,8 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     SolverReport innerReport;
     Eigen::VectorXd x = r;
     runNonsmoothNewton(inner, f, o.newton, innerContext,
-                       std::min(o.proximalInnerIterations, budget - used), x, innerReport, &linear);
+                       std::min(o.proximalInnerIterations, budget - used), x, innerReport,
+                       &workspace);
     used += std::max(1, innerReport.iterations);
     report.lineSearchFailures += innerReport.lineSearchFailures;
     report.maxRegularization = std::max(report.maxRegularization, innerReport.maxRegularization);
@@ -78,7 +78,7 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
     gsOptions.maxIterations = options_.hybridSweeps;
     gsOptions.recordHistory = false;
     SolverReport gsReport;
-    BgsSolver().solvePrepared(p, context.withOptions(gsOptions), r, gsReport);
+    sweeps_.solvePrepared(p, context.withOptions(gsOptions), r, gsReport);
     report.note("hybrid start: " + std::to_string(gsReport.iterations) + " bgs sweeps");
     if (gsReport.status == SolverStatus::Converged) {
       report.status = SolverStatus::Converged;
@@ -88,10 +88,10 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
   }
   const AlartCurnierFunction function(options_.radius);
   if (options_.proximalFromStart) {
-    proximalLoop(p, function, options_, context, budget, r, report);
+    proximalLoop(p, function, options_, context, budget, r, report, workspace_);
     return;
   }
-  runNonsmoothNewton(p, function, options_.newton, context, budget, r, report);
+  runNonsmoothNewton(p, function, options_.newton, context, budget, r, report, &workspace_);
   // Stall restart (hybrid (b) inside the solver, SOLVERS.md section 5; Siconos'
   // NSN_AND_PLI_NSN_LOOP): a stalled Newton sits in a local minimum of psi = 1/2 ||Phi||^2 that
   // is no solution, typically on the kink ||y_T|| = delta of one contact, where the Newton
@@ -109,7 +109,7 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
     gsOptions.maxIterations = std::min(options_.restartSweeps, budget - report.iterations);
     gsOptions.recordHistory = false;
     SolverReport gsReport;
-    BgsSolver().solvePrepared(p, context.withOptions(gsOptions), r, gsReport);
+    sweeps_.solvePrepared(p, context.withOptions(gsOptions), r, gsReport);
     report.iterations += gsReport.iterations;
     restartSweeps += gsReport.iterations;
     if (gsReport.status == SolverStatus::Converged) {
@@ -129,8 +129,8 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
       report.status = SolverStatus::MaxIterations;
       break;
     }
-    runNonsmoothNewton(p, function, options_.newton, context, budget - report.iterations, r,
-                       report);
+    runNonsmoothNewton(p, function, options_.newton, context, budget - report.iterations, r, report,
+                       &workspace_);
   }
   if (restarts > 0) {
     std::ostringstream msg;
@@ -142,7 +142,7 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
   // formatted into the message: this runs on most solves of a step.
   if (options_.proximalOnStall && report.status == SolverStatus::Stalled &&
       report.iterations < budget && !report.timeLimitReached)
-    proximalLoop(p, function, options_, context, budget - report.iterations, r, report);
+    proximalLoop(p, function, options_, context, budget - report.iterations, r, report, workspace_);
 }
 
 }  // namespace coulomb::solvers

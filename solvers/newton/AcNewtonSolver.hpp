@@ -4,6 +4,7 @@
 // residual-scaled regularization (5.8) for redundant contacts and, when plain Newton stalls, the
 // proximal-point outer loop (5.9) around the same Newton.
 #include <coulomb/solvers/ContactSolver.hpp>
+#include <coulomb/solvers/bgs/BgsSolver.hpp>
 #include <coulomb/solvers/newton/NewtonFunction.hpp>
 #include <coulomb/solvers/newton/NonsmoothNewton.hpp>
 
@@ -57,6 +58,9 @@ class AcNewtonSolver final : public ContactSolver {
 
  private:
   AcNewtonOptions options_;
+  // Kept between solves for their storage (ContactSolver::solve: one instance, one thread).
+  mutable NewtonWorkspace workspace_{options_.newton};
+  mutable BgsSolver sweeps_;  // the hybrid start's and the stall restart's bgs sweeps
 };
 
 }  // namespace coulomb::solvers

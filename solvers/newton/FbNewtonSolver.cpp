@@ -10,7 +10,8 @@ void FbNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
                                    Eigen::VectorXd& r, SolverReport& report) const {
   const FischerBurmeisterFunction function;
   runNonsmoothNewton(p, function, options_.newton, context,
-                     context.maxIterations(options_.newton.defaultMaxIterations), r, report);
+                     context.maxIterations(options_.newton.defaultMaxIterations), r, report,
+                     &workspace_);
   if (report.maxRegularization > 0 && p.maxDiagonal > 0) {
     std::ostringstream msg;
     msg << "J regularized by (5.8), sigma up to " << report.maxRegularization / p.maxDiagonal

@@ -31,6 +31,8 @@ class FbNewtonSolver final : public ContactSolver {
 
  private:
   FbNewtonOptions options_;
+  // Kept between solves for its storage (ContactSolver::solve: one instance, one thread).
+  mutable NewtonWorkspace workspace_{options_.newton};
 };
 
 }  // namespace coulomb::solvers

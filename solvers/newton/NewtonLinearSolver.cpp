@@ -137,9 +137,12 @@ bool NewtonLinearSolver::solve(const BlockSparseMatrix& W, const std::vector<int
         }
       }
     }
-    x = dense_.partialPivLu().solve(rhs);
+    denseLu_.compute(dense_);  // reuses its storage while m is unchanged
+    x = denseLu_.solve(rhs);
     if (!x.allFinite()) return false;
-    err = (dense_ * x - rhs).norm();
+    check_.noalias() = dense_ * x;
+    check_ -= rhs;
+    err = check_.norm();
   } else {
     stats_.lastReusedPattern = samePattern(W, kept);
     if (!stats_.lastReusedPattern) buildPattern(W, offset, kept, index);
@@ -149,7 +152,9 @@ bool NewtonLinearSolver::solve(const BlockSparseMatrix& W, const std::vector<int
     if (lu_->info() != Eigen::Success) return false;
     x = lu_->solve(rhs);
     if (lu_->info() != Eigen::Success || !x.allFinite()) return false;
-    err = (J_ * x - rhs).norm();
+    check_.noalias() = J_ * x;
+    check_ -= rhs;
+    err = check_.norm();
   }
   return err <= 1e-8 * rhs.norm();
 }

@@ -15,6 +15,7 @@
 #include <coulomb/solvers/BlockSparseMatrix.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
@@ -77,6 +78,8 @@ class NewtonLinearSolver {
   std::unique_ptr<SparseLu> lu_;
   bool analyzed_ = false;
   Eigen::MatrixXd dense_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> denseLu_;
+  Eigen::VectorXd check_;  // J_RR x - rhs
 };
 
 }  // namespace coulomb::solvers

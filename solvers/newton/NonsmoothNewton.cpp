@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -18,14 +19,17 @@ namespace {
 class NewtonSystem {
  public:
   NewtonSystem(const PreparedProblem& p, const NewtonFunction& f, const NewtonSettings& s,
-               NewtonLinearSolver* shared)
+               NewtonWorkspace& work)
       : p_(p),
         f_(f),
-        rhoN_(p.blockCount()),
-        rhoT_(p.blockCount()),
-        jac_(p.blockCount()),
-        own_(s.denseThreshold, s.sparseMaxDensity),
-        linear_(shared ? *shared : own_) {
+        work_(work),
+        rhoN_(work.rhoN),
+        rhoT_(work.rhoT),
+        jac_(work.jac),
+        linear_(work.linear) {
+    rhoN_.resize(p.blockCount());
+    rhoT_.resize(p.blockCount());
+    jac_.resize(p.blockCount());
     for (int b = 0; b < p.blockCount(); ++b) {
       if (!p.blocks[b].isContact()) {
         rhoN_[b] = rhoT_[b] = 1.0 / p.W.blockValues(p.W.diagonalBlock(b))[0];  // (10.2)
@@ -87,9 +91,12 @@ class NewtonSystem {
     }
   }
 
-  // g = J^T phi = W^T A^T phi + B^T phi (steepest-descent direction is -g)
-  Eigen::VectorXd gradient(const Eigen::VectorXd& phi) const {
-    Eigen::VectorXd atphi = Eigen::VectorXd::Zero(p_.size()), g = Eigen::VectorXd::Zero(p_.size());
+  // g = J^T phi = W^T A^T phi + B^T phi (steepest-descent direction is -g); the workspace's.
+  const Eigen::VectorXd& gradient(const Eigen::VectorXd& phi) {
+    Eigen::VectorXd& atphi = work_.atphi;
+    Eigen::VectorXd& g = work_.gradient;
+    atphi.setZero(p_.size());
+    g.setZero(p_.size());
     for (int b = 0; b < p_.blockCount(); ++b) {
       const int o = p_.offset[b], s = p_.W.blockSize(b);
       for (int a = 0; a < s; ++a)
@@ -105,7 +112,11 @@ class NewtonSystem {
   // Solves J_sigma d = -phi with eliminated unit rows (5.7); false if not accurate.
   bool solve(const Eigen::VectorXd& phi, double sigma, Eigen::VectorXd& d) {
     const int n = p_.size();
-    std::vector<int> index(n, -1), kept;
+    std::vector<int>& index = work_.index;
+    std::vector<int>& kept = work_.kept;
+    index.assign(n, -1);
+    kept.clear();
+    kept.reserve(n);  // at most n rows kept: sized once, not regrown when R grows
     d.setZero(n);
     for (int b = 0; b < p_.blockCount(); ++b) {
       const int o = p_.offset[b], s = p_.W.blockSize(b);
@@ -124,13 +135,16 @@ class NewtonSystem {
     const int m = static_cast<int>(kept.size());
     if (m == 0) return true;
     // rhs = -phi_R - (J_sigma d_E)_R
-    Eigen::VectorXd wd = sigma * d, jd;
+    Eigen::VectorXd& wd = work_.solveWd;
+    Eigen::VectorXd& jd = work_.solveJd;
+    wd = sigma * d;
     p_.W.multiplyAdd(d, wd);
     applyAB(wd, d, jd);
-    Eigen::VectorXd rhs(m);
+    Eigen::VectorXd& rhs = work_.rhs;
+    rhs.resize(m);
     for (int k = 0; k < m; ++k) rhs[k] = -phi[kept[k]] - jd[kept[k]];
     // J_RR = (A (W + sigma I) + B)_RR: dense or sparse LU (NewtonLinearSolver).
-    Eigen::VectorXd x;
+    Eigen::VectorXd& x = work_.x;
     if (!linear_.solve(p_.W, p_.offset, jac_, kept, index, sigma, rhs, x)) return false;
     for (int k = 0; k < m; ++k) d[kept[k]] = x[k];
     return true;
@@ -146,9 +160,9 @@ class NewtonSystem {
  private:
   const PreparedProblem& p_;
   const NewtonFunction& f_;
-  std::vector<double> rhoN_, rhoT_;
-  std::vector<NewtonBlockJacobian> jac_;
-  NewtonLinearSolver own_;
+  NewtonWorkspace& work_;
+  std::vector<double>&rhoN_, &rhoT_;
+  std::vector<NewtonBlockJacobian>& jac_;
   NewtonLinearSolver& linear_;
 };
 
@@ -156,14 +170,20 @@ class NewtonSystem {
 
 void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function,
                         const NewtonSettings& s, const SolveContext& context, int maxIterations,
-                        Eigen::VectorXd& r, SolverReport& report, NewtonLinearSolver* linear) {
+                        Eigen::VectorXd& r, SolverReport& report, NewtonWorkspace* workspace) {
   const int n = p.size();
-  NewtonSystem system(p, function, s, linear);
-  Eigen::VectorXd u, phi, d, wd, jd, trialR, trialU, trialPhi;
+  std::optional<NewtonWorkspace> own;
+  NewtonWorkspace& work = workspace != nullptr ? *workspace : own.emplace(s);
+  NewtonSystem system(p, function, s, work);
+  Eigen::VectorXd &u = work.u, &phi = work.phi, &d = work.d, &wd = work.wd, &jd = work.jd;
+  Eigen::VectorXd &trialR = work.trialR, &trialU = work.trialU, &trialPhi = work.trialPhi;
   double e = p.residual(r, u);
-  Eigen::VectorXd best = r;
+  Eigen::VectorXd& best = work.best;
+  best = r;
   double bestE = e;
-  std::vector<double> bestHistory{bestE};
+  std::vector<double>& bestHistory = work.bestHistory;
+  bestHistory.reserve(static_cast<std::size_t>(std::max(maxIterations, 0)) + 1);  // no regrowth
+  bestHistory.assign(1, bestE);
   double boost = 1.0;
   int failStreak = 0, steepest = 0;
   const double scaleRho = system.maxRho();

@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace coulomb::solvers {
 
 struct NewtonSettings {
@@ -48,9 +50,26 @@ struct NewtonSettings {
 // adds to report.iterations, sets the native residual e_Phi (5.13) and the regularization notes.
 // `linear`, when given, is used (and keeps its cached sparse pattern) instead of a solver of the
 // run's own: the proximal subproblems (5.9) share one, since their W keep one structure.
+// Everything one Newton solve needs besides the problem, kept by a solver between its solves
+// (a steady step then allocates nothing on the dense path) and shared by the proximal
+// subproblems of one solve (W + sigma I keeps W's structure, so the linear solver's sparse
+// pattern and symbolic analysis carry over). Not for two solves at once.
+struct NewtonWorkspace {
+  explicit NewtonWorkspace(const NewtonSettings& settings)
+      : linear(settings.denseThreshold, settings.sparseMaxDensity) {}
+  NewtonLinearSolver linear;
+  std::vector<double> rhoN, rhoT;        // (5.14) per block
+  std::vector<NewtonBlockJacobian> jac;  // A_b, B_b per block
+  std::vector<int> index, kept;          // rows kept after eliminating unit rows (5.7)
+  std::vector<double> bestHistory;       // best e_rel per iteration (5.12)
+  Eigen::VectorXd u, phi, d, wd, jd, trialR, trialU, trialPhi, best;  // the iteration
+  Eigen::VectorXd solveWd, solveJd, rhs, x, atphi, gradient;          // inside one step
+};
+
+// `workspace`: null for one made for this call.
 void runNonsmoothNewton(const PreparedProblem& problem, const NewtonFunction& function,
                         const NewtonSettings& settings, const SolveContext& context,
                         int maxIterations, Eigen::VectorXd& r, SolverReport& report,
-                        NewtonLinearSolver* linear = nullptr);
+                        NewtonWorkspace* workspace = nullptr);
 
 }  // namespace coulomb::solvers

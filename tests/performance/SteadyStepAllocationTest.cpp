@@ -1,8 +1,9 @@
 // A steady step allocates nothing (docs/architecture.md, "Memory in the step"): every buffer of
 // the step (step data, rows, problems, solver workspaces, the report) is kept by its World and
-// reused, so once a scene's sizes have settled a step makes no heap allocation at all. Checked on
-// the Gauss-Seidel solvers, forced (`pgs!`, `bgs!`); the Newton solvers' factorizations, which
-// auto falls back to, still allocate (docs/benchmarks.md, "The step rebuilt").
+// reused, so once a scene's sizes have settled a step makes no heap allocation at all. Checked
+// with the default policy where its solvers keep their workspaces (Gauss-Seidel, the Newton
+// solvers' dense path), and with Gauss-Seidel forced on the stacks, whose occasional Newton
+// fallback still allocates in Eigen's sparse LU (docs/benchmarks.md, "The step rebuilt").
 // The count covers the whole process: glibc's malloc family is interposed below (operator new
 // and Eigen both end there). Not built under AddressSanitizer, which owns the allocator.
 #include <coulomb/engine/World.hpp>
@@ -80,9 +81,17 @@ TEST(SteadyStepAllocation, TowerAllocatesNothing) {
   EXPECT_EQ(allocationsOfSteadySteps("box_stack_10", "bgs!", 50, 200), 0u);
 }
 
-// One box held by friction on an incline: a dense one-contact island.
+// One box held by friction on an incline: a dense one-contact island (bgs forced, then auto:
+// ac_newton with its dense LU).
 TEST(SteadyStepAllocation, BoxOnInclineAllocatesNothing) {
   EXPECT_EQ(allocationsOfSteadySteps("box_incline_A_stick", "bgs!", 50, 200), 0u);
+  EXPECT_EQ(allocationsOfSteadySteps("box_incline_A_stick", "auto", 50, 200), 0u);
+}
+
+// Default policy on small scenes: a 1000:1 mass ratio (ac_newton), a sliding sphere, a cradle.
+TEST(SteadyStepAllocation, SmallScenesWithAutoAllocateNothing) {
+  for (const char* scene : {"mass_ratio_1000kg_on_1kg", "sphere_slide", "newton_cradle"})
+    EXPECT_EQ(allocationsOfSteadySteps(scene, "auto", 100, 200), 0u) << scene;
 }
 
 }  // namespace
