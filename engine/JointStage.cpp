@@ -147,21 +147,30 @@ void JointStage::storeImpulses(const joints::RowSet& rows, joints::BlockRange ra
 
 bool JointStage::stabilizedInverseInertias(const geometry::BodyState& state, double h,
                                            std::vector<Eigen::Matrix3d>& out) const {
-  std::map<std::uint32_t, Eigen::Matrix3d> stiffness;  // by body index: deterministic order
+  // Per loaded body the sum of its joints' geometric stiffness, summed in joint order (sorted by
+  // (body, joint order) and merged: deterministic, and no map built on every step).
+  std::vector<StiffnessTerm>& terms = stiffnessTerms_;
+  terms.clear();
   const auto add = [&](const geometry::BodyId& id, const Eigen::Vector3d& force,
                        const Eigen::Vector3d& anchor) {
     if (!id.valid() || !state.isDynamic(id.index)) return;
     const Eigen::Vector3d arm = state.poses[id.index].rotation * anchor;
-    auto [it, inserted] = stiffness.try_emplace(id.index, Eigen::Matrix3d::Zero());
-    it->second += joints::rotationalGeometricStiffness(force, arm);
+    terms.push_back({id.index, static_cast<std::uint32_t>(terms.size()),
+                     joints::rotationalGeometricStiffness(force, arm)});
   };
   for (const Record& r : records_) {
     if (!r.alive || r.broken || r.reaction.force.isZero(0.0)) continue;
     add(r.def.bodyA, -r.reaction.force, r.def.frameA.anchor);  // the joint's force on A
     add(r.def.bodyB, r.reaction.force, r.def.frameB.anchor);
   }
+  std::sort(terms.begin(), terms.end(), [](const StiffnessTerm& l, const StiffnessTerm& r) {
+    return l.body != r.body ? l.body < r.body : l.order < r.order;
+  });
   bool changed = false;
-  for (const auto& [body, k] : stiffness) {
+  for (std::size_t t = 0; t < terms.size();) {
+    const std::uint32_t body = terms[t].body;
+    Eigen::Matrix3d k = Eigen::Matrix3d::Zero();
+    for (; t < terms.size() && terms[t].body == body; ++t) k += terms[t].stiffness;
     const Eigen::Quaterniond toPrincipal = state.poses[body].rotation * state.principalFrames[body];
     const Eigen::Matrix3d r = toPrincipal.toRotationMatrix();
     const Eigen::Matrix3d inertia = r * state.principalMoments[body].asDiagonal() * r.transpose();
@@ -177,8 +186,10 @@ bool JointStage::stabilizedInverseInertias(const geometry::BodyState& state, dou
 void JointStage::correctDrift(geometry::BodyState& state, std::span<const std::int32_t> active,
                               const joints::Stabilization& worldPolicy, double h,
                               JointStepReport& report) {
-  std::vector<const joints::JointDef*> defs;
-  std::vector<std::uint32_t> slots;
+  std::vector<const joints::JointDef*>& defs = correctionDefs_;  // kept for their storage
+  std::vector<std::uint32_t>& slots = correctionSlots_;
+  defs.clear();
+  slots.clear();
   joints::PredictedStateSettings settings;  // the tightest of the joints' settings
   bool first = true;
   for (const std::int32_t item : active) {
@@ -200,8 +211,8 @@ void JointStage::correctDrift(geometry::BodyState& state, std::span<const std::i
   }
   if (defs.empty()) return;
   const auto started = std::chrono::steady_clock::now();
-  const integrators::PredictedStateResult result =
-      integrators::correctPredictedState(state, defs, settings, h);
+  integrators::PredictedStateResult& result = correctionResult_;
+  integrators::correctPredictedState(state, defs, settings, h, correction_, result);
   for (std::size_t j = 0; j < slots.size(); ++j) {
     Record& r = records_[slots[j]];
     const joints::ConstraintEval start =

@@ -9,6 +9,7 @@
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Ids.hpp>
+#include <coulomb/integrators/PredictedStateCorrection.hpp>
 #include <coulomb/joints/JointDef.hpp>
 #include <coulomb/joints/RowSet.hpp>
 
@@ -90,6 +91,16 @@ class JointStage final : public RowSource {
 
   std::vector<Record> records_;
   std::vector<std::uint32_t> freeSlots_;
+  struct StiffnessTerm {  // one joint's geometric stiffness on one body
+    std::uint32_t body = 0, order = 0;
+    Eigen::Matrix3d stiffness;
+  };
+  mutable std::vector<StiffnessTerm> stiffnessTerms_;  // stabilizedInverseInertias, kept
+  // The predicted-state correction's joints, workspace and result, kept between steps.
+  std::vector<const joints::JointDef*> correctionDefs_;
+  std::vector<std::uint32_t> correctionSlots_;
+  integrators::PredictedStateWorkspace correction_;
+  integrators::PredictedStateResult correctionResult_;
 };
 
 }  // namespace coulomb::engine

@@ -3,12 +3,10 @@
 #include <coulomb/integrators/PredictedStateCorrection.hpp>
 #include <coulomb/joints/JointConstraint.hpp>
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
-
 #include <algorithm>
 #include <limits>
-#include <map>
+#include <utility>
+#include <vector>
 
 namespace coulomb::integrators {
 namespace {
@@ -23,11 +21,197 @@ geometry::Pose predictedPoseOf(const geometry::BodyState& state, const geometry:
   return predictPose(state, id.index, h);
 }
 
-/// Which (joint, side) rows touch each dynamic body, with that side's M^-1 J^T (6 x k).
-struct BodyTouch {
-  int joint;
-  bool sideB;
-};
+using Workspace = PredictedStateWorkspace;
+using Matrix6k = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
+
+// The structure's identity: per joint its row count and which of its bodies carry unknowns.
+void structureKey(const geometry::BodyState& state, std::span<const joints::JointDef* const> joints,
+                  const Workspace& w, std::vector<int>& key) {
+  key.clear();
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    key.push_back(w.start[j].rows());
+    for (const geometry::BodyId* id : {&joints[j]->bodyA, &joints[j]->bodyB})
+      key.push_back(dynamicBody(state, *id) ? static_cast<int>(id->index) : -1);
+  }
+}
+
+// Which joints share a body, the terms of B = J_rows M^-1 J_impulses^T per block, the blocks of
+// B^T B and the scalar entries of both symmetric systems. Runs when the structure changes only.
+void buildStructure(const geometry::BodyState& state,
+                    std::span<const joints::JointDef* const> joints, Workspace& w) {
+  const auto jointCount = static_cast<int>(joints.size());
+  auto rows = [&](int j) { return w.start[j].rows(); };
+  w.touches.clear();
+  for (int j = 0; j < jointCount; ++j)
+    for (const bool sideB : {false, true}) {
+      const geometry::BodyId& id = sideB ? joints[j]->bodyB : joints[j]->bodyA;
+      if (dynamicBody(state, id)) w.touches.push_back({id.index, j, sideB});
+    }
+  std::stable_sort(w.touches.begin(), w.touches.end(),
+                   [](const auto& l, const auto& r) { return l.body < r.body; });
+  w.bodies.clear();
+  for (const auto& t : w.touches)
+    if (w.bodies.empty() || w.bodies.back() != t.body) w.bodies.push_back(t.body);
+
+  // Pairs (a, b) of joints on one body, every (a, a) too (compliance on every row).
+  w.pairs.clear();
+  for (int j = 0; j < jointCount; ++j) w.pairs.emplace_back(j, j);
+  for (std::size_t g = 0; g < w.touches.size();) {
+    std::size_t end = g;
+    while (end < w.touches.size() && w.touches[end].body == w.touches[g].body) ++end;
+    for (std::size_t a = g; a < end; ++a)
+      for (std::size_t b = g; b < end; ++b)
+        w.pairs.emplace_back(w.touches[a].joint, w.touches[b].joint);
+    g = end;
+  }
+  std::sort(w.pairs.begin(), w.pairs.end());
+  w.pairs.erase(std::unique(w.pairs.begin(), w.pairs.end()), w.pairs.end());
+  auto pairIndex = [&](int a, int b) {
+    return static_cast<int>(std::lower_bound(w.pairs.begin(), w.pairs.end(), std::pair{a, b}) -
+                            w.pairs.begin());
+  };
+  w.pairValues.assign(w.pairs.size() + 1, 0);
+  for (std::size_t q = 0; q < w.pairs.size(); ++q)
+    w.pairValues[q + 1] = w.pairValues[q] + rows(w.pairs[q].first) * rows(w.pairs[q].second);
+  w.firstPairOf.assign(jointCount + 1, 0);
+  for (const auto& [a, b] : w.pairs) ++w.firstPairOf[a + 1];
+  for (int j = 0; j < jointCount; ++j) w.firstPairOf[j + 1] += w.firstPairOf[j];
+  w.diagonalPair.resize(jointCount);
+  for (int j = 0; j < jointCount; ++j) w.diagonalPair[j] = pairIndex(j, j);
+  // Terms in the order the triplets of the first version were summed: body, then a, then b.
+  w.terms.clear();
+  for (std::size_t g = 0; g < w.touches.size();) {
+    std::size_t end = g;
+    while (end < w.touches.size() && w.touches[end].body == w.touches[g].body) ++end;
+    for (std::size_t a = g; a < end; ++a)
+      for (std::size_t b = g; b < end; ++b)
+        w.terms.push_back({static_cast<int>(a), static_cast<int>(b),
+                           pairIndex(w.touches[a].joint, w.touches[b].joint)});
+    g = end;
+  }
+
+  // B^T B: block (i, j) = sum over k of B(k, i)^T B(k, j), for i >= j.
+  w.normalPairs.clear();
+  for (int k = 0; k < jointCount; ++k)
+    for (int x = w.firstPairOf[k]; x < w.firstPairOf[k + 1]; ++x)
+      for (int y = w.firstPairOf[k]; y < w.firstPairOf[k + 1]; ++y)
+        if (w.pairs[x].second >= w.pairs[y].second)
+          w.normalPairs.emplace_back(w.pairs[x].second, w.pairs[y].second);
+  std::sort(w.normalPairs.begin(), w.normalPairs.end());
+  w.normalPairs.erase(std::unique(w.normalPairs.begin(), w.normalPairs.end()), w.normalPairs.end());
+  w.normalValues.assign(w.normalPairs.size() + 1, 0);
+  for (std::size_t q = 0; q < w.normalPairs.size(); ++q)
+    w.normalValues[q + 1] =
+        w.normalValues[q] + rows(w.normalPairs[q].first) * rows(w.normalPairs[q].second);
+  w.normalTerms.clear();
+  for (int k = 0; k < jointCount; ++k)
+    for (int x = w.firstPairOf[k]; x < w.firstPairOf[k + 1]; ++x)
+      for (int y = w.firstPairOf[k]; y < w.firstPairOf[k + 1]; ++y) {
+        const int i = w.pairs[x].second, j = w.pairs[y].second;
+        if (i < j) continue;
+        const auto target = static_cast<int>(
+            std::lower_bound(w.normalPairs.begin(), w.normalPairs.end(), std::pair{i, j}) -
+            w.normalPairs.begin());
+        w.normalTerms.push_back({x, y, target});
+      }
+
+  // Scalar lower-triangle entries: of B^T B (+ shifts), and of the symmetric J M^-1 J^T.
+  w.normalRows.clear();
+  w.normalCols.clear();
+  w.normalSource.clear();
+  w.normalDiagonal.clear();
+  for (std::size_t q = 0; q < w.normalPairs.size(); ++q) {
+    const auto [i, j] = w.normalPairs[q];
+    for (int r = 0; r < rows(i); ++r)
+      for (int c = 0; c < rows(j); ++c) {
+        if (i == j && c > r) continue;
+        if (i == j && c == r) w.normalDiagonal.push_back(static_cast<int>(w.normalRows.size()));
+        w.normalRows.push_back(w.offset[i] + r);
+        w.normalCols.push_back(w.offset[j] + c);
+        w.normalSource.push_back(w.normalValues[q] + r * rows(j) + c);
+      }
+  }
+  w.symmetricRows.clear();
+  w.symmetricCols.clear();
+  w.symmetricSource.clear();
+  for (std::size_t q = 0; q < w.pairs.size(); ++q) {
+    const auto [a, b] = w.pairs[q];
+    if (a < b) continue;
+    for (int r = 0; r < rows(a); ++r)
+      for (int c = 0; c < rows(b); ++c) {
+        if (a == b && c > r) continue;
+        w.symmetricRows.push_back(w.offset[a] + r);
+        w.symmetricCols.push_back(w.offset[b] + c);
+        w.symmetricSource.push_back(w.pairValues[q] + r * rows(b) + c);
+      }
+  }
+  const int n = w.offset[jointCount];
+  w.normalLdlt.analyze(n, w.normalRows, w.normalCols);
+  w.symmetricAnalyzed = false;  // analysed when the projection first needs it
+  w.b.assign(w.pairValues.back(), 0.0);
+  w.normal.assign(w.normalValues.back(), 0.0);
+  w.minvJt.resize(w.touches.size());
+}
+
+const joints::RowJacobian& side(const std::vector<joints::ConstraintEval>& at,
+                                const Workspace::Touch& t) {
+  return t.sideB ? at[t.joint].jacobianB : at[t.joint].jacobianA;
+}
+
+// w.b = blocks of J_rows M^-1 J_impulses^T (the rows' Jacobians taken from `rowsAt`, the impulses'
+// from `impulsesAt`), plus `compliance` on every diagonal entry.
+void assemble(const geometry::BodyState& state, const std::vector<joints::ConstraintEval>& rowsAt,
+              const std::vector<joints::ConstraintEval>& impulsesAt, double compliance,
+              Workspace& w) {
+  for (std::size_t t = 0; t < w.touches.size(); ++t) {
+    const auto& touch = w.touches[t];
+    const joints::RowJacobian& J = side(impulsesAt, touch);
+    Matrix6k& out = w.minvJt[t];
+    out.resize(6, J.rows());
+    out.topRows<3>() = state.inverseMasses[touch.body] * J.leftCols<3>().transpose();
+    out.bottomRows<3>() = state.worldInverseInertias[touch.body] * J.rightCols<3>().transpose();
+  }
+  std::fill(w.b.begin(), w.b.end(), 0.0);
+  for (const Workspace::Term& term : w.terms) {
+    const joints::RowJacobian& Ja = side(rowsAt, w.touches[term.row]);
+    const Matrix6k& Gb = w.minvJt[term.column];
+    double* block = w.b.data() + w.pairValues[term.pair];
+    const auto cols = Gb.cols();
+    for (Eigen::Index r = 0; r < Ja.rows(); ++r)
+      for (Eigen::Index c = 0; c < cols; ++c) block[r * cols + c] += Ja.row(r).dot(Gb.col(c));
+  }
+  if (compliance != 0.0)
+    for (std::size_t j = 0; j < w.diagonalPair.size(); ++j) {
+      const int q = w.diagonalPair[j], k = w.start[j].rows();
+      for (int r = 0; r < k; ++r) w.b[w.pairValues[q] + r * k + r] += compliance;
+    }
+}
+
+// w.normal = B^T B from w.b; w.rhs = B^T v.
+void normalEquations(const Eigen::VectorXd& v, Workspace& w) {
+  std::fill(w.normal.begin(), w.normal.end(), 0.0);
+  auto rows = [&](int j) { return w.start[j].rows(); };
+  for (const Workspace::NormalTerm& t : w.normalTerms) {
+    const int k = w.pairs[t.left].first, i = w.pairs[t.left].second, j = w.pairs[t.right].second;
+    const double* left = w.b.data() + w.pairValues[t.left];    // rows(k) x rows(i)
+    const double* right = w.b.data() + w.pairValues[t.right];  // rows(k) x rows(j)
+    double* out = w.normal.data() + w.normalValues[t.target];  // rows(i) x rows(j)
+    for (int r = 0; r < rows(i); ++r)
+      for (int c = 0; c < rows(j); ++c) {
+        double sum = 0.0;
+        for (int s = 0; s < rows(k); ++s) sum += left[s * rows(i) + r] * right[s * rows(j) + c];
+        out[r * rows(j) + c] += sum;
+      }
+  }
+  w.rhs.setZero(v.size());
+  for (std::size_t q = 0; q < w.pairs.size(); ++q) {  // (B^T v)_i += B(k, i)^T v_k
+    const auto [k, i] = w.pairs[q];
+    const double* block = w.b.data() + w.pairValues[q];
+    for (int s = 0; s < rows(k); ++s)
+      for (int r = 0; r < rows(i); ++r)
+        w.rhs[w.offset[i] + r] += block[s * rows(i) + r] * v[w.offset[k] + s];
+  }
+}
 
 }  // namespace
 
@@ -49,113 +233,103 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
                                            std::span<const joints::JointDef* const> joints,
                                            const joints::PredictedStateSettings& settings,
                                            double h) {
+  PredictedStateWorkspace workspace;
   PredictedStateResult result;
+  correctPredictedState(state, joints, settings, h, workspace, result);
+  return result;
+}
+
+void correctPredictedState(geometry::BodyState& state,
+                           std::span<const joints::JointDef* const> joints,
+                           const joints::PredictedStateSettings& settings, double h,
+                           PredictedStateWorkspace& w, PredictedStateResult& result) {
+  result.iterations = 0;
+  result.initialError = result.finalError = 0.0;
+  result.converged = false;
   const auto jointCount = static_cast<int>(joints.size());
   result.impulses.resize(jointCount);
-  if (jointCount == 0) return result;
+  if (jointCount == 0) return;
 
   // Jacobians at the start of the step (fixed through the iteration, as in Bender's method).
-  std::vector<joints::ConstraintEval> start;
-  std::vector<int> offset(jointCount + 1, 0);
-  start.reserve(jointCount);
+  w.start.resize(jointCount);
+  w.offset.assign(jointCount + 1, 0);
   for (int j = 0; j < jointCount; ++j) {
     const joints::JointDef& def = *joints[j];
     const auto pose = [&](const geometry::BodyId& id) {
       return id.valid() ? state.poses[id.index] : geometry::Pose::identity();
     };
-    start.push_back(joints::evaluateJoint(def, pose(def.bodyA), pose(def.bodyB)));
-    offset[j + 1] = offset[j] + start.back().rows();
-    result.impulses[j] = joints::RowVector::Zero(start.back().rows());
+    w.start[j] = joints::evaluateJoint(def, pose(def.bodyA), pose(def.bodyB));
+    w.offset[j + 1] = w.offset[j] + w.start[j].rows();
+    result.impulses[j] = joints::RowVector::Zero(w.start[j].rows());
   }
-  const int n = offset[jointCount];
-
-  // A = J M^-1 J^T, accumulated per shared body (deterministic: std::map by body index).
-  std::map<std::uint32_t, std::vector<BodyTouch>> touches;
-  for (int j = 0; j < jointCount; ++j)
-    for (const bool sideB : {false, true}) {
-      const geometry::BodyId& id = sideB ? joints[j]->bodyB : joints[j]->bodyA;
-      if (dynamicBody(state, id)) touches[id.index].push_back({j, sideB});
+  const int n = w.offset[jointCount];
+  {
+    std::vector<int>& key = w.key;  // compared in place: no allocation when unchanged
+    std::vector<int> fresh;
+    fresh.swap(w.keyScratch);
+    structureKey(state, joints, w, fresh);
+    if (fresh != key) {
+      key = fresh;
+      buildStructure(state, joints, w);
     }
-  const auto inverseMassTimesJt = [&](std::uint32_t body, const joints::RowJacobian& J) {
-    Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> out(6, J.rows());
-    out.topRows<3>() = state.inverseMasses[body] * J.leftCols<3>().transpose();
-    out.bottomRows<3>() = state.worldInverseInertias[body] * J.rightCols<3>().transpose();
-    return out;
-  };
-  // B = J_row M^-1 J_n^T: with J_row = J_n it is Bender's symmetric A; with J_row the Jacobian
-  // at the predicted state it is the Newton matrix of p -> C(x(t+h; p)) (times 1/h).
-  const auto side = [](const std::vector<joints::ConstraintEval>& at,
-                       const BodyTouch& t) -> const joints::RowJacobian& {
-    return t.sideB ? at[t.joint].jacobianB : at[t.joint].jacobianA;
-  };
-  const auto assemble = [&](const std::vector<joints::ConstraintEval>& rowsAt,
-                            const std::vector<joints::ConstraintEval>& impulsesAt) {
-    std::vector<Eigen::Triplet<double>> triplets;
-    for (const auto& [body, list] : touches)
-      for (const BodyTouch& a : list)
-        for (const BodyTouch& b : list) {
-          const Eigen::MatrixXd block =
-              side(rowsAt, a) * inverseMassTimesJt(body, side(impulsesAt, b));
-          for (int r = 0; r < block.rows(); ++r)
-            for (int c = 0; c < block.cols(); ++c)
-              triplets.emplace_back(offset[a.joint] + r, offset[b.joint] + c, block(r, c));
-        }
-    Eigen::SparseMatrix<double> A(n, n);
-    A.setFromTriplets(triplets.begin(), triplets.end());
-    return A;
-  };
-  Eigen::SparseMatrix<double> A = assemble(start, start);
-  double maxDiagonal = 0.0;
-  for (int i = 0; i < n; ++i) maxDiagonal = std::max(maxDiagonal, A.coeff(i, i));
-  if (maxDiagonal <= 0.0) return result;  // no joint touches a dynamic body
-  const double compliance = 1e-10 * maxDiagonal;
-  Eigen::SparseMatrix<double> identity(n, n);
-  identity.setIdentity();
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+    w.keyScratch.swap(fresh);
+  }
 
-  Eigen::VectorXd drift(n);
-  std::vector<joints::ConstraintEval> predicted(jointCount);
+  // A = J M^-1 J^T at the start: its largest diagonal scales the compliance of every row.
+  assemble(state, w.start, w.start, 0.0, w);
+  double maxDiagonal = 0.0;
+  for (int j = 0; j < jointCount; ++j) {
+    const int q = w.diagonalPair[j], k = w.start[j].rows();
+    for (int r = 0; r < k; ++r)
+      maxDiagonal = std::max(maxDiagonal, w.b[w.pairValues[q] + r * k + r]);
+  }
+  if (maxDiagonal <= 0.0) return;  // no joint touches a dynamic body
+  const double compliance = 1e-10 * maxDiagonal;
+
+  Eigen::VectorXd& drift = w.drift;
+  drift.resize(n);
+  w.predicted.resize(jointCount);
   // Predicted error of every joint at t+h with the current velocities; returns the largest |C|.
   const auto predictErrors = [&] {
     double largest = 0.0;
     for (int j = 0; j < jointCount; ++j) {
       const joints::JointDef& def = *joints[j];
-      predicted[j] = joints::evaluateJoint(def, predictedPoseOf(state, def.bodyA, h),
-                                           predictedPoseOf(state, def.bodyB, h));
-      drift.segment(offset[j], predicted[j].rows()) = predicted[j].error;
-      largest = std::max(largest, predicted[j].error.cwiseAbs().maxCoeff());
+      w.predicted[j] = joints::evaluateJoint(def, predictedPoseOf(state, def.bodyA, h),
+                                             predictedPoseOf(state, def.bodyB, h));
+      drift.segment(w.offset[j], w.predicted[j].rows()) = w.predicted[j].error;
+      largest = std::max(largest, w.predicted[j].error.cwiseAbs().maxCoeff());
     }
     return drift.allFinite() ? largest : std::numeric_limits<double>::infinity();
   };
   const auto applyImpulse = [&](const Eigen::VectorXd& p,
                                 const std::vector<joints::ConstraintEval>& along) {
-    for (const auto& [body, list] : touches)
-      for (const BodyTouch& t : list) {
-        const auto impulse = p.segment(offset[t.joint], start[t.joint].rows());
-        const joints::RowJacobian& J = side(along, t);
-        state.linearVelocities[body] +=
-            state.inverseMasses[body] * (J.leftCols<3>().transpose() * impulse);
-        state.angularVelocities[body] +=
-            state.worldInverseInertias[body] * (J.rightCols<3>().transpose() * impulse);
-      }
+    for (const Workspace::Touch& t : w.touches) {
+      const auto impulse = p.segment(w.offset[t.joint], w.start[t.joint].rows());
+      const joints::RowJacobian& J = side(along, t);
+      state.linearVelocities[t.body] +=
+          state.inverseMasses[t.body] * (J.leftCols<3>().transpose() * impulse);
+      state.angularVelocities[t.body] +=
+          state.worldInverseInertias[t.body] * (J.rightCols<3>().transpose() * impulse);
+    }
   };
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> saved;
   const auto saveVelocities = [&] {
-    saved.clear();
-    for (const auto& entry : touches)
-      saved.emplace_back(state.linearVelocities[entry.first], state.angularVelocities[entry.first]);
+    w.saved.clear();
+    for (const std::uint32_t body : w.bodies)
+      w.saved.emplace_back(state.linearVelocities[body], state.angularVelocities[body]);
   };
   const auto restoreVelocities = [&] {
     std::size_t k = 0;
-    for (const auto& entry : touches) {
-      state.linearVelocities[entry.first] = saved[k].first;
-      state.angularVelocities[entry.first] = saved[k++].second;
+    for (const std::uint32_t body : w.bodies) {
+      state.linearVelocities[body] = w.saved[k].first;
+      state.angularVelocities[body] = w.saved[k++].second;
     }
   };
 
   double largest = predictErrors();
   result.initialError = largest;
-  Eigen::VectorXd total = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd& total = w.total;
+  total.setZero(n);
+  Eigen::VectorXd& p = w.p;
   double damping = 1e-12;  // Levenberg-Marquardt mu, relative to max diag(B^T B)
   for (int pass = 0; pass < settings.iterations && largest > settings.tolerance; ++pass) {
     // Newton step on p -> C(x(t+h; p)): B p = -C/h with B = J_pred M^-1 J_n^T, the rows'
@@ -163,22 +337,25 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
     // ~h|omega| per pass and fails on a whipping chain's tip). B turns singular where a chain
     // passes a straight configuration, so the step is Levenberg-Marquardt damped:
     // (B^T B + mu I) p = B^T (-C/h), mu shrunk after a success and grown until the error drops.
-    const Eigen::SparseMatrix<double> B = assemble(predicted, start) + compliance * identity;
-    const Eigen::SparseMatrix<double> normal = B.transpose() * B;
-    const Eigen::VectorXd rhs = B.transpose() * (-drift / h);
+    assemble(state, w.predicted, w.start, compliance, w);
+    w.target = -drift / h;
+    normalEquations(w.target, w);
     double scaleOfNormal = 0.0;
-    for (int i = 0; i < n; ++i) scaleOfNormal = std::max(scaleOfNormal, normal.coeff(i, i));
+    for (const int e : w.normalDiagonal)
+      scaleOfNormal = std::max(scaleOfNormal, w.normal[w.normalSource[e]]);
     saveVelocities();
     const double norm = drift.norm();
     double trial = largest;
     bool improved = false;
-    Eigen::VectorXd p;
     for (int attempt = 0; attempt < 12 && !improved; ++attempt) {
-      ldlt.compute(normal + damping * scaleOfNormal * identity);
-      if (ldlt.info() != Eigen::Success) break;
-      p = ldlt.solve(rhs);
+      w.entries.resize(w.normalSource.size());
+      for (std::size_t e = 0; e < w.normalSource.size(); ++e)
+        w.entries[e] = w.normal[w.normalSource[e]];
+      for (const int e : w.normalDiagonal) w.entries[e] += damping * scaleOfNormal;
+      if (!w.normalLdlt.factorize(w.entries)) break;
+      w.normalLdlt.solve(w.rhs, p);
       if (!p.allFinite()) break;
-      applyImpulse(p, start);
+      applyImpulse(p, w.start);
       trial = predictErrors();
       improved = drift.norm() < norm;
       if (improved) {
@@ -205,17 +382,25 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
   // post-stabilization). It closes the joints; the step is then not exactly SHAKE.
   for (int pass = result.iterations; pass < settings.iterations && largest > settings.tolerance;
        ++pass) {
-    const std::vector<joints::ConstraintEval> along = predicted;
-    ldlt.compute(assemble(along, along) + compliance * identity);
-    if (ldlt.info() != Eigen::Success) break;
-    Eigen::VectorXd p = ldlt.solve(-drift / h);
+    w.along = w.predicted;
+    assemble(state, w.along, w.along, compliance, w);
+    if (!w.symmetricAnalyzed) {
+      w.symmetricLdlt.analyze(n, w.symmetricRows, w.symmetricCols);
+      w.symmetricAnalyzed = true;
+    }
+    w.entries.resize(w.symmetricSource.size());
+    for (std::size_t e = 0; e < w.symmetricSource.size(); ++e)
+      w.entries[e] = w.b[w.symmetricSource[e]];
+    if (!w.symmetricLdlt.factorize(w.entries)) break;
+    w.target = -drift / h;
+    w.symmetricLdlt.solve(w.target, p);
     if (!p.allFinite()) break;
     saveVelocities();
     const double norm = drift.norm();
     bool improved = false;
     double trial = largest;
     for (int halving = 0; halving < 8 && !improved; ++halving) {
-      applyImpulse(p, along);
+      applyImpulse(p, w.along);
       trial = predictErrors();
       improved = drift.norm() < norm;
       if (!improved) {
@@ -234,8 +419,7 @@ PredictedStateResult correctPredictedState(geometry::BodyState& state,
   result.finalError = largest;
   result.converged = largest <= settings.tolerance;
   for (int j = 0; j < jointCount; ++j)
-    result.impulses[j] = total.segment(offset[j], start[j].rows());
-  return result;
+    result.impulses[j] = total.segment(w.offset[j], w.start[j].rows());
 }
 
 }  // namespace coulomb::integrators

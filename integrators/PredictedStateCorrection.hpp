@@ -6,9 +6,9 @@
 //      velocities (x + h v; the torque-free DLM rotation for dynamic bodies);
 //   2. evaluate each joint's C at the predicted poses: the drift d(t+h) the step would leave;
 //   3. solve A p = -d/h with A = J M^-1 J^T (J at the start of the step, factored once:
-//      sparse LDL^T, plus a tiny compliance eps I with eps = 1e-10 max diag(A) so redundant
-//      rows, e.g. a closed loop of hinges, stay solvable; SOLVERS.md sec. 10) and apply
-//      dv = M^-1 J^T p to the velocities;
+//      sparse LDL^T (solvers/direct/SparseLdlt, analysed once per joint structure), plus a tiny
+//      compliance eps I with eps = 1e-10 max diag(A) so redundant rows, e.g. a closed loop of
+//      hinges, stay solvable; SOLVERS.md sec. 10) and apply dv = M^-1 J^T p to the velocities;
 //   4. repeat until every |C(t+h)| <= tolerance or the iteration cap;
 //   5. if a pass stalls (|C| not halved: SHAKE has no root near, e.g. a heavy load on light
 //      links), the remaining passes project along the rows at the predicted state instead.
@@ -19,10 +19,16 @@
 // of 5. are not SHAKE (the force direction is taken at t+h, which also damps the fast modes).
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/joints/JointDef.hpp>
+#include <coulomb/joints/JointPrimitives.hpp>
 #include <coulomb/joints/RowBlock.hpp>
 #include <coulomb/joints/Stabilization.hpp>
+#include <coulomb/solvers/direct/SparseLdlt.hpp>
 
+#include <Eigen/Core>
+
+#include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace coulomb::integrators {
@@ -39,11 +45,58 @@ struct PredictedStateResult {
 /// (static bodies and the world do not move). Does not modify `state`.
 geometry::Pose predictPose(const geometry::BodyState& state, std::size_t i, double h);
 
+/// What the correction keeps between steps: the structure of its matrices (which joints share a
+/// body, the patterns of B and B^T B, their LDL^T analyses), rebuilt only when the joints, their
+/// row counts or which of their bodies are dynamic change, and every vector of the iteration. With
+/// it a steady step's correction allocates nothing.
+struct PredictedStateWorkspace {
+  struct Touch {  // a joint's side on a dynamic body; sorted by body, then joint, then side
+    std::uint32_t body = 0;
+    int joint = 0;
+    bool sideB = false;
+  };
+  struct Term {  // block `pair` += rows of touch `row` times M^-1 (rows of touch `column`)^T
+    int row = 0, column = 0, pair = 0;
+  };
+  struct NormalTerm {  // normal block `target` += B(k, i)^T B(k, j): pairs (k, i) and (k, j)
+    int left = 0, right = 0, target = 0;
+  };
+  std::vector<int> key, keyScratch;  // rows and dynamic bodies per joint (structure's identity)
+  std::vector<int> offset;
+  std::vector<Touch> touches;
+  std::vector<std::uint32_t> bodies;       // the touched bodies, ascending
+  std::vector<std::pair<int, int>> pairs;  // (a, b): joints sharing a body (and every (a, a))
+  std::vector<int> pairValues;             // start of block (a, b) in `b`, rows(a) x rows(b)
+  std::vector<int> firstPairOf;            // pairs of joint a: [firstPairOf[a], firstPairOf[a+1])
+  std::vector<int> diagonalPair;           // (a, a) per joint
+  std::vector<Term> terms;
+  std::vector<std::pair<int, int>> normalPairs;  // (i, j), i >= j: blocks of B^T B
+  std::vector<int> normalValues;
+  std::vector<NormalTerm> normalTerms;
+  // Scalar lower-triangle entries of the two symmetric systems, as (value index) into the block
+  // values, and the positions of their diagonal entries.
+  std::vector<int> normalRows, normalCols, normalSource, normalDiagonal;
+  std::vector<int> symmetricRows, symmetricCols, symmetricSource;
+  solvers::SparseLdlt normalLdlt, symmetricLdlt;
+  bool symmetricAnalyzed = false;
+  // The iteration.
+  std::vector<joints::ConstraintEval> start, predicted, along;
+  std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>> minvJt;  // per touch
+  std::vector<double> b, normal, entries;
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> saved;
+  Eigen::VectorXd drift, total, p, rhs, target;
+};
+
 /// Corrects the velocities of the dynamic bodies of `joints` (bodies index `state`; an invalid
 /// id is the world). The joints must be valid (validateJointDef) and name live bodies.
 PredictedStateResult correctPredictedState(geometry::BodyState& state,
                                            std::span<const joints::JointDef* const> joints,
                                            const joints::PredictedStateSettings& settings,
                                            double h);
+/// The same with the caller's workspace and result (reused: the World's joint stage).
+void correctPredictedState(geometry::BodyState& state,
+                           std::span<const joints::JointDef* const> joints,
+                           const joints::PredictedStateSettings& settings, double h,
+                           PredictedStateWorkspace& workspace, PredictedStateResult& result);
 
 }  // namespace coulomb::integrators

@@ -20,7 +20,7 @@ const char* statusName(SolverStatus status) {
   return "?";
 }
 
-void SolverReport::note(const std::string& text) {
+void SolverReport::note(std::string_view text) {
   if (text.empty()) return;
   if (!message.empty()) message += "; ";
   message += text;

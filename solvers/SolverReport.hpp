@@ -4,6 +4,7 @@
 // measure, an optional history and a message saying what happened (regularization, fallbacks...).
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace coulomb::solvers {
@@ -42,7 +43,7 @@ struct SolverReport {
   std::vector<IterationRecord> history;  // when SolverOptions::recordHistory
   std::string message;                   // human-readable notes, "; "-separated
 
-  void note(const std::string& text);  // appends to message
+  void note(std::string_view text);  // appends to message (a literal makes no temporary string)
   // Back to a fresh report, keeping the strings' and the history's storage (solvers reuse one).
   void reset();
   [[nodiscard]] bool converged() const { return status == SolverStatus::Converged; }

@@ -26,8 +26,10 @@ struct ChainFigures {
 };
 
 ChainFigures runChain(int links, double h, double seconds, joints::StabilizationMethod method,
-                      const std::string& solver) {
-  JointedScene scene(settingsWith(method, solver));
+                      const std::string& solver, double gravityScale = 1.0) {
+  engine::WorldSettings settings = settingsWith(method, solver);
+  settings.gravity *= gravityScale;
+  JointedScene scene(settings);
   buildChain(scene, links);
   const double scale = 0.1 * kG * 0.1 * links * links / 2.0;  // S = m g L N^2 / 2
   ChainFigures f;
@@ -43,20 +45,40 @@ ChainFigures runChain(int links, double h, double seconds, joints::Stabilization
 }  // namespace
 
 // SCENES.md A6 at dt = 0.01, 10 s. The gap target (< 1e-4 m) is met with the predicted
-// state; its energy target (loss < 10 %) is NOT (about -55 %, see docs/tuning.md). The energy
-// bound is the measured figure with a margin, so a regression fails.
+// state; its energy target (loss < 10 %) is NOT (an ensemble mean of about -80 %, single
+// trajectories -55 to -91 %; see docs/tuning.md). The energy bound is the measured mean with a
+// margin, so a regression fails.
 TEST(WorldJoint, Chain10BothPoliciesStayConnected) {
-  const ChainFigures predicted =
-      runChain(10, 0.01, 10.0, joints::StabilizationMethod::PredictedState, "auto");
-  const ChainFigures baumgarte =
-      runChain(10, 0.01, 10.0, joints::StabilizationMethod::Baumgarte, "auto");
+  // The whipping chain is chaotic: a change of 1e-13 in g moves the energy left after 10 s by
+  // +-15 %, so the dissipation of a policy is read from a small ensemble (g scaled by 1 + k 1e-13),
+  // its mean and its worst member, not from one trajectory.
+  ChainFigures predicted, baumgarte;
+  double predictedWorst = 0.0, baumgarteWorst = 0.0;
+  constexpr int kRuns = 5;
+  for (int k = 0; k < kRuns; ++k) {
+    const double g = 1.0 + 1e-13 * k;
+    const ChainFigures p =
+        runChain(10, 0.01, 10.0, joints::StabilizationMethod::PredictedState, "auto", g);
+    const ChainFigures b =
+        runChain(10, 0.01, 10.0, joints::StabilizationMethod::Baumgarte, "auto", g);
+    predicted.maxGap = std::max(predicted.maxGap, p.maxGap);
+    baumgarte.maxGap = std::max(baumgarte.maxGap, b.maxGap);
+    predicted.energyDriftEnd += p.energyDriftEnd / kRuns;
+    baumgarte.energyDriftEnd += b.energyDriftEnd / kRuns;
+    predictedWorst = std::min(predictedWorst, p.energyDriftEnd);
+    baumgarteWorst = std::min(baumgarteWorst, b.energyDriftEnd);
+  }
   std::printf(
-      "chain N=10 dt 0.01: predicted_state gap %.3g drift %.4f; baumgarte gap %.3g drift %.4f\n",
-      predicted.maxGap, predicted.energyDriftEnd, baumgarte.maxGap, baumgarte.energyDriftEnd);
+      "chain N=10 dt 0.01, %d runs: predicted_state gap %.3g drift mean %.4f worst %.4f; "
+      "baumgarte gap %.3g drift mean %.4f worst %.4f\n",
+      kRuns, predicted.maxGap, predicted.energyDriftEnd, predictedWorst, baumgarte.maxGap,
+      baumgarte.energyDriftEnd, baumgarteWorst);
   EXPECT_LT(predicted.maxGap, 1e-4);
   EXPECT_LT(baumgarte.maxGap, 0.06);
-  EXPECT_GT(predicted.energyDriftEnd, -0.9);  // above -1: never comes apart (measured -0.78)
+  EXPECT_GT(predicted.energyDriftEnd, -0.9);  // mean above -1: never comes apart
   EXPECT_GT(baumgarte.energyDriftEnd, -0.8);
+  EXPECT_GT(predictedWorst, -1.0);  // no member loses everything
+  EXPECT_GT(baumgarteWorst, -1.0);
 }
 
 TEST(WorldJoint, Chain10AtSmallStepKeepsItsEnergy) {
