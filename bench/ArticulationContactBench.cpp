@@ -83,7 +83,7 @@ void BM_ArmPushingBoxesStep(benchmark::State& state) {
     engine::World world = engine::io::buildWorld(scene);
     state.ResumeTiming();
     for (std::uint64_t k = 0; k < scene.steps; ++k) {
-      const engine::StepReport report = world.step();
+      const engine::StepReport& report = world.step();
       for (const auto& island : report.islands)
         largestIsland = std::max(largestIsland, island.bodies);
     }

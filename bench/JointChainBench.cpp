@@ -35,7 +35,7 @@ void BM_Chain(benchmark::State& state) {
   double correctionSolves = 0.0;
   std::int64_t steps = 0;
   for (auto _ : state) {
-    const engine::StepReport report = chain.world.step();
+    const engine::StepReport& report = chain.world.step();
     state.PauseTiming();
     gap = std::max(gap, samples::maxAnchorGap(chain));
     correctionSolves += report.joints.correctionIterations;

@@ -178,7 +178,7 @@ void runSteps(engine::World& world, std::uint64_t steps, double timeStep, RunMet
   double summed = 0.0;
   for (std::uint64_t n = 0; n < steps; ++n) {
     const auto start = std::chrono::steady_clock::now();
-    const engine::StepReport report = world.step(timeStep);
+    const engine::StepReport& report = world.step(timeStep);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summed += seconds;

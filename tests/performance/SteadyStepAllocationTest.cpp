@@ -88,6 +88,14 @@ TEST(SteadyStepAllocation, BoxOnInclineAllocatesNothing) {
   EXPECT_EQ(allocationsOfSteadySteps("box_incline_A_stick", "auto", 50, 200), 0u);
 }
 
+// Ball-jointed chains (maximal coordinates) with the predicted-state correction: the ldlt solve
+// and the correction's LDL^T work in storage analysed once (warm-up past the first swing, whose
+// broad-phase pair lists still grow).
+TEST(SteadyStepAllocation, ChainsAllocateNothing) {
+  EXPECT_EQ(allocationsOfSteadySteps("chain_10", "auto", 200, 300), 0u);
+  EXPECT_EQ(allocationsOfSteadySteps("chain_50", "auto", 200, 300), 0u);
+}
+
 // Default policy on small scenes: a 1000:1 mass ratio (ac_newton), a sliding sphere, a cradle.
 TEST(SteadyStepAllocation, SmallScenesWithAutoAllocateNothing) {
   for (const char* scene : {"mass_ratio_1000kg_on_1kg", "sphere_slide", "newton_cradle"})
