@@ -340,18 +340,22 @@ std::vector<ArticulationStage::TreeRows> ArticulationStage::treeRows(
 
 int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
                                          const geometry::BodyState& state,
-                                         DelassusBlockMap& blocks) const {
+                                         DelassusBlocks& blocks) const {
   int degreesOfFreedom = 0;
+  blocks.clear();
   for (const TreeRows& tree : treeRows(rows, state)) {
     degreesOfFreedom += records_[tree.articulation].model->nv();
     // M^-1 J_t^T, one impulse-level ABA pass per row.
-    std::vector<Eigen::MatrixXd> minvJt;
-    minvJt.reserve(tree.jacobians.size());
-    for (const Eigen::MatrixXd& J : tree.jacobians) {
-      Eigen::MatrixXd columns(J.cols(), J.rows());
-      for (Eigen::Index row = 0; row < J.rows(); ++row)
-        columns.col(row) = tree.response.applyInverseMass(J.row(row).transpose());
-      minvJt.push_back(std::move(columns));
+    if (minvJt_.size() < tree.jacobians.size()) minvJt_.resize(tree.jacobians.size());
+    for (std::size_t i = 0; i < tree.jacobians.size(); ++i) {
+      const Eigen::MatrixXd& J = tree.jacobians[i];
+      Eigen::MatrixXd& columns = minvJt_[i];
+      columns.resize(J.cols(), J.rows());
+      for (Eigen::Index row = 0; row < J.rows(); ++row) {
+        jointRow_ = J.row(row).transpose();
+        tree.response.applyInverseMass(jointRow_, column_);
+        columns.col(row) = column_;
+      }
     }
     // A tree with few joints cannot move along some row directions (a 1-DOF arm on a table has
     // no velocity along the hinge axis): those rows have W_rr = 0 and many rows on one tree make
@@ -361,17 +365,34 @@ int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
     double maxDiagonal = 0.0;
     for (std::size_t i = 0; i < tree.blocks.size(); ++i)
       for (Eigen::Index row = 0; row < tree.jacobians[i].rows(); ++row)
-        maxDiagonal = std::max(maxDiagonal, tree.jacobians[i].row(row).dot(minvJt[i].col(row)));
+        maxDiagonal = std::max(maxDiagonal, tree.jacobians[i].row(row).dot(minvJt_[i].col(row)));
     const double compliance = kRegularization * std::max(maxDiagonal, 1e-12);
     for (std::size_t i = 0; i < tree.blocks.size(); ++i)
       for (std::size_t j = 0; j < tree.blocks.size(); ++j) {
-        Eigen::MatrixXd contribution = tree.jacobians[i] * minvJt[j];
-        if (i == j) contribution.diagonal().array() += compliance;
-        auto [it, inserted] =
-            blocks.try_emplace({tree.blocks[i], tree.blocks[j]}, std::move(contribution));
-        if (!inserted) it->second += tree.jacobians[i] * minvJt[j];
+        blocks.emplace_back();
+        DelassusBlock& block = blocks.back();
+        block.row = tree.blocks[i];
+        block.col = tree.blocks[j];
+        block.order = static_cast<int>(blocks.size());
+        block.value.noalias() = tree.jacobians[i] * minvJt_[j];
+        block.shift = i == j ? compliance : 0.0;
       }
   }
+  // One entry per (row, col), in that order: a block shared by two trees (a contact between two
+  // robots) is the sum of their parts in tree order, with the first tree's compliance.
+  std::sort(blocks.begin(), blocks.end(), [](const DelassusBlock& l, const DelassusBlock& r) {
+    return l.row != r.row ? l.row < r.row : l.col != r.col ? l.col < r.col : l.order < r.order;
+  });
+  std::size_t kept = 0;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    if (kept > 0 && blocks[kept - 1].row == blocks[b].row && blocks[kept - 1].col == blocks[b].col)
+      blocks[kept - 1].value += blocks[b].value;
+    else if (kept++ != b)
+      blocks[kept - 1] = blocks[b];
+  }
+  blocks.resize(kept);
+  for (DelassusBlock& block : blocks)
+    if (block.shift != 0.0) block.value.diagonal().array() += block.shift;
   return degreesOfFreedom;
 }
 

@@ -19,6 +19,7 @@
 // edge of the step.
 #include <coulomb/engine/ArticulationDesc.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/RowSource.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
@@ -36,8 +37,7 @@ namespace coulomb::engine {
 
 struct RowBlockSlot;
 
-/// W blocks keyed by (row block, row block), as ProblemAssembler accumulates them.
-using DelassusBlockMap = std::map<std::pair<int, int>, Eigen::MatrixXd>;
+// DelassusBlock(s): ProblemAssembler.hpp.
 
 /// Which articulation (slot) and link a proxy body stands for; articulation -1: not a link.
 struct LinkRef {
@@ -114,7 +114,7 @@ class ArticulationStage final : public RowSource {
   /// For ProblemAssembler: adds J_t M^-1 J_t^T of every tree touched by `rows` to `blocks`;
   /// returns the number of joint velocities involved (degrees of freedom).
   int addDelassusBlocks(const joints::RowSet& rows, const geometry::BodyState& state,
-                        DelassusBlockMap& blocks) const;
+                        DelassusBlocks& blocks) const;
   /// qd += M^-1 J_t^T lambda for every tree touched by `rows`; refreshes the proxy velocities.
   void applyImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
                      const Eigen::VectorXd& lambda, geometry::BodyState& state);
@@ -174,6 +174,9 @@ class ArticulationStage final : public RowSource {
                                                            const Eigen::VectorXd& lambda) const;
 
   std::vector<Record> records_;
+  // addDelassusBlocks' M^-1 J_t^T per row block and one impulse-level column, kept for storage.
+  mutable std::vector<Eigen::MatrixXd> minvJt_;
+  mutable Eigen::VectorXd column_, jointRow_;
   std::vector<LinkRef> linkOfBody_;          // per body slot
   std::vector<TreeConstraint> constraints_;  // this step's, indexed by the edges' items
 };

@@ -198,7 +198,8 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
   out.degreesOfFreedom = 6 * (static_cast<int>(groupStart.size()) - 1);
 
   // Rows on articulation links: the trees' joint-space part (their proxies carry no unknowns).
-  DelassusBlockMap treeBlocks;
+  DelassusBlocks& treeBlocks = scratch.treeBlocks;
+  treeBlocks.clear();
   if (articulations != nullptr)
     out.degreesOfFreedom += articulations->addDelassusBlocks(rows, state, treeBlocks);
 
@@ -269,8 +270,7 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
         for (int t = groupStart[groups[g]]; t < groupStart[groups[g] + 1]; ++t)
           columns.push_back(touches[t].block);
     const auto treeBegin = tree;
-    for (; tree != treeBlocks.end() && tree->first.first == k; ++tree)
-      columns.push_back(tree->first.second);
+    for (; tree != treeBlocks.end() && tree->row == k; ++tree) columns.push_back(tree->col);
     std::sort(columns.begin(), columns.end());
     columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
 
@@ -286,7 +286,7 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
           if (groupOfSide[2 * j + side] == groups[g]) value.noalias() += jk * minvJt[2 * j + side];
       }
       for (auto it = treeBegin; it != tree; ++it)
-        if (it->first.second == j) value += it->second;
+        if (it->col == j) value += it->value;
       if (dense)
         denseW.block(out.slots[k].offset, out.slots[j].offset, value.rows(), value.cols()) = value;
     }

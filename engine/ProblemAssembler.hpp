@@ -32,6 +32,17 @@ struct RowBlockSlot {
   int rows = 0;
 };
 
+/// A block (row block, row block) of W's trees' part; a row block has at most 6 rows.
+struct DelassusBlock {
+  int row = 0, col = 0;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, 6, 6> value;
+  int order = 0;       // emission order (the tree order for a block two trees share)
+  double shift = 0.0;  // the emitting tree's diagonal compliance, added once per block
+};
+/// Sorted by (row, col), one entry per pair, as ProblemAssembler reads them. A vector kept by
+/// the caller: cleared and refilled, never reallocated once it has held as many blocks.
+using DelassusBlocks = std::vector<DelassusBlock>;
+
 /// One side of a row block on a dynamic body (the assembler's bookkeeping).
 struct AssemblyTouch {
   std::uint32_t body = 0;
@@ -54,6 +65,7 @@ struct AssemblyScratch {
   std::shared_ptr<Eigen::MatrixXd> dense;
   std::shared_ptr<solvers::BlockSparseMatrix> sparse;
   std::shared_ptr<solvers::BodySpaceDelassus> bodySpace;
+  DelassusBlocks treeBlocks;  // the articulations' part of W
 };
 
 struct AssembledProblem {

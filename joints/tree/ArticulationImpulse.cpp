@@ -48,10 +48,20 @@ Eigen::VectorXd ArticulationImpulse::velocityChange(std::span<const Vector6d> li
     throw std::invalid_argument(
         "articulation impulse: link impulses must be empty or one per link");
   if (jointImpulse.size() != 0) articulation_->checkVelocity(jointImpulse, "joint impulse");
+  Eigen::VectorXd dqd;
+  sweep(linkImpulses, jointImpulse, dqd);
+  return dqd;
+}
+
+void ArticulationImpulse::sweep(std::span<const Vector6d> linkImpulses,
+                                const Eigen::VectorXd& jointImpulse, Eigen::VectorXd& dqd) const {
+  const int n = articulation_->linkCount();
   const auto size = static_cast<size_t>(n);
   // Bias sweep: p^A_i = -impulse_i, u_i = tau_i - S^T p^A_i, p^a = p^A + U D^-1 u (c = 0).
-  std::vector<Vector6d> bias(size);
-  std::vector<JointVector> uForce(size);
+  std::vector<Vector6d>& bias = bias_;
+  std::vector<JointVector>& uForce = uForce_;
+  bias.resize(size);
+  uForce.resize(size);
   for (int i = 0; i < n; ++i)
     bias[static_cast<size_t>(i)] =
         linkImpulses.empty() ? Vector6d::Zero() : Vector6d(-linkImpulses[static_cast<size_t>(i)]);
@@ -70,8 +80,9 @@ Eigen::VectorXd ArticulationImpulse::velocityChange(std::span<const Vector6d> li
       bias[static_cast<size_t>(p)] += kinematics_.parentToLink[k].applyTransposeForce(childBias);
   }
   // Acceleration sweep with a_0 = 0: dqd_i = D^-1 (u_i - U^T X a_p), a_i = X a_p + S dqd_i.
-  std::vector<Vector6d> change(size);
-  Eigen::VectorXd dqd(articulation_->nv());
+  std::vector<Vector6d>& change = change_;
+  change.resize(size);
+  dqd.resize(articulation_->nv());
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<size_t>(i);
     const int p = articulation_->parent(i);
@@ -83,12 +94,17 @@ Eigen::VectorXd ArticulationImpulse::velocityChange(std::span<const Vector6d> li
     dqd.segment(articulation_->vIndex(i), s.cols()) = dqdi;
     change[k] += s * dqdi;
   }
-  return dqd;
 }
 
 Eigen::VectorXd ArticulationImpulse::applyInverseMass(const Eigen::VectorXd& jointImpulse) const {
   articulation_->checkVelocity(jointImpulse, "joint impulse");
   return velocityChange({}, jointImpulse);
+}
+
+void ArticulationImpulse::applyInverseMass(const Eigen::VectorXd& jointImpulse,
+                                           Eigen::VectorXd& dqd) const {
+  articulation_->checkVelocity(jointImpulse, "joint impulse");
+  sweep({}, jointImpulse, dqd);
 }
 
 Eigen::VectorXd ArticulationImpulse::responseToPointImpulse(

@@ -39,6 +39,9 @@ class ArticulationImpulse {
                                                const Eigen::VectorXd& jointImpulse) const;
   /// M^-1 tau in O(n) (joint-space rows such as limits and motors use it).
   [[nodiscard]] Eigen::VectorXd applyInverseMass(const Eigen::VectorXd& jointImpulse) const;
+  /// The same into `dqd`, the sweeps in this object's scratch: no allocation once sized (so one
+  /// object is not for two threads at once).
+  void applyInverseMass(const Eigen::VectorXd& jointImpulse, Eigen::VectorXd& dqd) const;
   /// dqd for the world impulse `worldImpulse` at `worldPoint` on `link`.
   [[nodiscard]] Eigen::VectorXd responseToPointImpulse(int link, const Eigen::Vector3d& worldPoint,
                                                        const Eigen::Vector3d& worldImpulse) const;
@@ -67,6 +70,11 @@ class ArticulationImpulse {
   TreeKinematics kinematics_;
   std::vector<ForceColumns> u_;        // U_i = I^A_i S_i
   std::vector<JointMatrix> dInverse_;  // D_i^-1 = (S_i^T I^A_i S_i + armature)^-1
+  // The sweeps' per-link values, kept for their storage.
+  mutable std::vector<geometry::Vector6d> bias_, change_;
+  mutable std::vector<JointVector> uForce_;
+  void sweep(std::span<const geometry::Vector6d> linkImpulses, const Eigen::VectorXd& jointImpulse,
+             Eigen::VectorXd& dqd) const;
 };
 
 }  // namespace coulomb::joints::tree
