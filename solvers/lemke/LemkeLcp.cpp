@@ -32,6 +32,21 @@ double lcpError(const Eigen::MatrixXd& M, const Eigen::VectorXd& b, const Eigen:
 
 namespace {
 
+// b + delta |b|_inf theta with theta_i in [0.5, 1) (fractional parts of i times the golden ratio:
+// deterministic and all distinct). Makes the problem nondegenerate (no ratio ties, no basic
+// variable at zero along the path) for a perturbation far below the answer's tolerance; the
+// final basis is then solved with the true b.
+Eigen::VectorXd perturbed(const Eigen::VectorXd& b, double delta) {
+  Eigen::VectorXd out = b;
+  if (delta <= 0) return out;
+  const double scale = delta * b.lpNorm<Eigen::Infinity>();
+  for (int i = 0; i < b.size(); ++i) {
+    const double g = 0.6180339887498949 * (i + 1);
+    out[i] += scale * (0.5 + 0.5 * (g - std::floor(g)));
+  }
+  return out;
+}
+
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 // Tableau rows: A x = rhs over the variables w_0..w_{n-1} (columns 0..n-1), z_0..z_{n-1}
@@ -56,12 +71,14 @@ class Tableau {
   // Recomputes the tableau from the original data and the current basis: T = B^-1 [I | -M | -d],
   // rhs = B^-1 b. Removes the rounding accumulated by the eliminations (rank-deficient M makes
   // it large: spurious rays and wrong answers otherwise). Cost about n pivots.
-  bool refactor() {
+  bool refactor() { return refactor(b_); }
+  // The same with another right-hand side (the unperturbed b at the end).
+  bool refactor(const Eigen::VectorXd& b) {
     Eigen::MatrixXd B(n_, n_);
     for (int i = 0; i < n_; ++i) B.col(i) = original_.col(basis_[i]);
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(B);
     Eigen::MatrixXd fresh = lu.solve(Eigen::MatrixXd(original_));
-    Eigen::VectorXd rhs = lu.solve(b_);
+    Eigen::VectorXd rhs = lu.solve(b);
     if (!fresh.allFinite() || !rhs.allFinite()) return false;
     A_ = fresh;
     rhs_ = rhs;
@@ -143,14 +160,16 @@ LcpResult solveLcpLemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& b,
   const double tau = s.pivotTolerance * std::max(M.cwiseAbs().maxCoeff(), 1e-300);
   const double smallZ0 = 1e-12 * b.lpNorm<Eigen::Infinity>();
   const int maxPivots = s.maxPivots > 0 ? s.maxPivots : std::max(50, 10 * n);
-  Tableau T(M, b);
+  const Eigen::VectorXd bp = perturbed(b, s.perturbation);
+  Tableau T(M, bp);
   const int z0 = T.artificial();
-  // Entering z0: the row of the most negative b (ties lexicographic, column of z0 is -1).
+  // Entering z0: the row of the most negative (perturbed) b (ties lexicographic, column of z0 is
+  // -1).
   int row = 0;
   for (int i = 1; i < n; ++i) {
-    if (b[i] < b[row] - s.tieTolerance * std::abs(b[row]))
+    if (bp[i] < bp[row] - s.tieTolerance * std::abs(bp[row]))
       row = i;
-    else if (std::abs(b[i] - b[row]) <= s.tieTolerance * std::abs(b[row]) && s.lexicographic &&
+    else if (std::abs(bp[i] - bp[row]) <= s.tieTolerance * std::abs(bp[row]) && s.lexicographic &&
              T.lexLess(i, row, z0))
       row = i;
   }
@@ -216,9 +235,9 @@ LcpResult solveLcpLemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& b,
   out.z = T.solution();
   if (!out.z.allFinite()) out.z.setZero(), out.status = LcpStatus::NumericalFailure;
   out.error = lcpError(M, b, out.z, out.w);
-  // The same basis solved afresh; kept only when it is better (near-singular bases of
-  // rank-deficient M make the fresh solve worse than the eliminations).
-  if (out.status != LcpStatus::NumericalFailure && T.refactor()) {
+  // The same basis solved afresh with the true b (the path followed the perturbed one); kept only
+  // when it is better (a nearly singular basis can make the fresh solve worse than the tableau).
+  if (out.status != LcpStatus::NumericalFailure && T.refactor(b)) {
     Eigen::VectorXd w;
     const Eigen::VectorXd z = T.solution();
     const double e = lcpError(M, b, z, w);

@@ -76,6 +76,14 @@ FacetedLcp buildLcp(const PreparedProblem& p, const LemkeOptions& o) {
       qt -= Wcf * lu.solve(L.qf);
     }
   }
+  // Scaled by s = max diag W~ (u / s = (W~ / s) r + q~ / s has the same r): the tableau's entries
+  // are then O(1) next to the unit entries of the slack rows whatever the units of W, so that the
+  // pivot tolerance relative to max|M| means the same on every problem. The slack lambda and the
+  // box variable z2 become lambda / s and z2 / s; neither is part of r.
+  double scale = nc > 0 ? Wt.diagonal().cwiseAbs().maxCoeff() : 1.0;
+  if (!(scale > 0) || !std::isfinite(scale)) scale = 1.0;
+  Wt /= scale;
+  qt /= scale;
   // S, g0 and the extra entries (lambda rows/columns, box columns) per block, in block order.
   L.S = Eigen::MatrixXd::Zero(nc, lcpSize);
   L.g0 = Eigen::VectorXd::Zero(nc);

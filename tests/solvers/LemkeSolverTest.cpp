@@ -94,6 +94,39 @@ TEST(LemkeSolver, CorpusFixturesPivotToAnLcpSolution) {
   }
 }
 
+// Redundant contacts (issue 24 item 4): a box stack with four coplanar points per face (52
+// contacts, W of rank 78 / 156) and a periodic box of polyhedra (60 contacts, W of order 1e-4, q
+// with a component on the null space of W). The degenerate path ended on spurious rays (residuals
+// 4.4e-9 and 4.3e-3); nothing slides, so the faceted LCP solution is exact on the cone too.
+TEST(LemkeSolver, RedundantContactsEndSolved) {
+  for (const char* name :
+       {"redundant/BoxesStack1-i100000-32", "redundant/LMGC_100_PR_PerioBox-i00361-60-03000"}) {
+    const SolveOutcome out = LemkeSolver().solve(fixtures::loadFixture(name));
+    EXPECT_EQ(out.report.status, SolverStatus::Converged) << name << ": " << out.report.message;
+    EXPECT_LE(out.report.residual, 1e-10) << name << ": " << out.report.message;
+    EXPECT_EQ(out.report.message.find("RAY"), std::string::npos) << name;
+  }
+}
+
+// The answer does not depend on the units of W: the same stack with W and q scaled by 1e-6 and
+// 1e6 (r unchanged) is solved the same way (the LCP is built from W / max diag W).
+TEST(LemkeSolver, UnitsOfWDoNotMatter) {
+  const ContactProblem base = fixtures::loadFixture("redundant/BoxesStack1-i100000-32");
+  const SolveOutcome ref = LemkeSolver().solve(base);
+  const Eigen::MatrixXd W = base.W.toBlockSparse(std::vector<int>(base.size() / 3, 3)).toDense();
+  for (const double k : {1e-6, 1e6}) {
+    ContactProblem p = base;
+    p.W = DelassusOperator::dense(k * W);
+    p.q = k * base.q;
+    const SolveOutcome out = LemkeSolver().solve(p);
+    EXPECT_EQ(out.report.status, SolverStatus::Converged) << k << ": " << out.report.message;
+    EXPECT_EQ(out.report.iterations, ref.report.iterations) << k;
+    EXPECT_LT((out.impulses - ref.impulses).lpNorm<Eigen::Infinity>(),
+              1e-8 * ref.impulses.lpNorm<Eigen::Infinity>())
+        << k;
+  }
+}
+
 TEST(LemkeSolver, TooLargeIsNotApplicable) {
   LemkeOptions small;
   small.maxLcpSize = 20;
