@@ -14,7 +14,8 @@ struct SolverOptions {
   // target; a simulation step is visually exact far above it (1e-4..1e-6 are common in games).
   double tolerance = 1e-8;
   // [iterations: Newton steps or Gauss-Seidel sweeps] 0 = the solver's own default (pgs, bgs:
-  // 10000 sweeps like Siconos' NSGS; ac_newton: 200 like AC11 section 5.2).
+  // 10000 sweeps like Siconos' NSGS; ac_newton: 200 like AC11 section 5.2). Lemke's pivot limit
+  // is only raised by it, never lowered (LemkeOptions).
   int maxIterations = 0;
   // [s] Wall-clock budget, checked once per iteration (a Gauss-Seidel sweep, a Newton step):
   // a corpus run must never hang. Default: no limit (the step loop sets one when it needs to).

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -164,7 +165,12 @@ void LemkeSolver::solvePrepared(const PreparedProblem& p, const SolveContext& co
                                 Eigen::VectorXd& r, SolverReport& report) const {
   const FacetedLcp L = buildLcp(p, options_);
   LemkeSettings settings = options_.lemke;
-  if (context.options().maxIterations > 0) settings.maxPivots = context.options().maxIterations;
+  // The common iteration cap (sweeps, Newton steps) may raise the pivot limit but never cut a
+  // path short: a basis with z0 still in it answers nothing (the World's cap of 200 did that to
+  // every island above ~20 contacts: residuals up to 1e13 were applied).
+  const int ownLimit =
+      settings.maxPivots > 0 ? settings.maxPivots : std::max(50, 10 * static_cast<int>(L.b.size()));
+  settings.maxPivots = std::max(ownLimit, context.options().maxIterations);
   const LcpResult lcp = solveLcpLemke(L.M, L.b, settings);
   report.iterations = lcp.pivots;
   report.nativeResidual = lcp.error;

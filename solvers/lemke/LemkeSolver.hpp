@@ -25,7 +25,8 @@ struct LemkeOptions {
   // [-] Equality-block regularization eps * max diag(W_ff) added before the Schur elimination
   // (redundant joint rows, SOLVERS.md 10). Default 1e-10 (the role of ODE's CFM).
   double equalityRegularization = 1e-10;
-  // Pivot limit (0 = max(50, 10 size)), lexicographic anti-cycling, tolerances.
+  // Pivot limit (0 = max(50, 10 size)), lexicographic anti-cycling, tolerances. The common
+  // SolverOptions::maxIterations only raises the pivot limit (a path cut short has no answer).
   LemkeSettings lemke;
 };
 

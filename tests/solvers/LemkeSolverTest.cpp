@@ -127,6 +127,17 @@ TEST(LemkeSolver, UnitsOfWDoNotMatter) {
   }
 }
 
+// The common iteration cap (the World's is 200 sweeps) never cuts a pivoting path short: a basis
+// with z0 still in it is no answer (applied, it shot bodies away, issue 24 item 4).
+TEST(LemkeSolver, TheIterationCapDoesNotCutThePathShort) {
+  SolverOptions capped;
+  capped.maxIterations = 20;  // BoxesStack needs about 115 pivots
+  const SolveOutcome out =
+      LemkeSolver().solve(fixtures::loadFixture("redundant/BoxesStack1-i100000-32"), capped);
+  EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_GT(out.report.iterations, 20);
+}
+
 TEST(LemkeSolver, TooLargeIsNotApplicable) {
   LemkeOptions small;
   small.maxLcpSize = 20;
