@@ -139,12 +139,9 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   const ResidualValue res = commonResidual(problem, out.impulses, out.velocities);
   report.residual = res.relative;
   report.absoluteResidual = res.absolute;
-  // Never worse than the start (the better of the projected warm start and r = 0): an answer
-  // above the tolerance with a larger common residual is not returned, the start is, with the
-  // solver's status and a note. A pivoting solver ignores the start and can end far from any
-  // answer (lemke on a cut path: residuals up to 1e13, a light box shot 16 m); with no fallback
-  // (NAME!) the start is the least-bad safe answer.
-  if (report.residual > options.tolerance && std::isfinite(report.residual) && r != r0) {
+  // Never worse than the start, when asked (SolverOptions::neverWorseThanStart).
+  if (options.neverWorseThanStart && report.residual > options.tolerance &&
+      std::isfinite(report.residual) && r != r0) {
     prepared.toOriginal(r0, work.rs);
     const ResidualValue startResidual = commonResidual(problem, work.rs, work.us);
     if (startResidual.relative < report.residual) {

@@ -3,9 +3,9 @@
 // validate the options and the problem, return at once when there is nothing to do, prepare the
 // problem, choose the start (warm start or 0, whichever has the smaller residual), run the
 // algorithm, then measure the common residual after the last update on the original problem and
-// guarantee a finite answer (a numerical failure is a status, never a NaN) that is never worse
-// than its start: an answer above the tolerance with a larger common residual than the start is
-// replaced by the start (status kept, with a note).
+// guarantee a finite answer (a numerical failure is a status, never a NaN); with
+// SolverOptions::neverWorseThanStart (the World's) an answer above the tolerance with a larger
+// common residual than the start is replaced by the start (status kept, with a note).
 // A solver implements solvePrepared(); composite solvers (hybrid starts, fallbacks) call other
 // solvers' solvePrepared() on the same PreparedProblem.
 #include <coulomb/solvers/ContactProblem.hpp>

@@ -33,6 +33,13 @@ struct SolverOptions {
   // (ChooserSettings::pileStallSweeps): a pgs that stagnates just above the tolerance otherwise
   // spends its whole sweep cap before Newton takes over.
   int stallWindow = 0;
+  // Never return an answer above the tolerance whose common residual is larger than that of the
+  // start (the better of the projected warm start and r = 0): return the start instead, with the
+  // solver's status and a note (ContactSolver::solve). What a simulation applies must be the
+  // least-bad safe answer: a pivoting solver ignores its start and can end far from any answer
+  // (issue 24: lemke on a cut path, residuals up to 1e13, bodies shot away). Default off, so that
+  // a corpus run shows each solver's own answer; on in SolvePolicy::simulationOptions (the World).
+  bool neverWorseThanStart = false;
 };
 
 // The first invalid field, or nullopt.

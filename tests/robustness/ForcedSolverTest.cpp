@@ -1,7 +1,7 @@
 // A solver forced on every island with NAME! (no fallback) must never do harm silently (issue 24
-// item 4): an answer worse than its start is not applied (ContactSolver::solve), lemke! keeps
-// stacks and mass ratios at rest, and a forced solver that cannot run on an island is reported
-// once in StepReport::warnings (the CLI prints them).
+// item 4): an answer worse than its start is not applied (SolverOptions::neverWorseThanStart, on
+// in the World), lemke! keeps stacks and mass ratios at rest, and a forced solver that cannot run
+// on an island is reported once in StepReport::warnings (the CLI prints them).
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 
