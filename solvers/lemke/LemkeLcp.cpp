@@ -94,6 +94,7 @@ class Tableau {
   [[nodiscard]] double value(int row) const { return rhs_[row]; }
   [[nodiscard]] int basic(int row) const { return basis_[row]; }
   [[nodiscard]] bool finite() const { return rhs_.allFinite(); }
+  [[nodiscard]] double columnMax(int col) const { return A_.col(col).cwiseAbs().maxCoeff(); }
 
   // Lexicographic comparison of rows i and k: (rhs, row of B^-1) / pivot column entry.
   [[nodiscard]] bool lexLess(int i, int k, int col) const {
@@ -215,6 +216,9 @@ LcpResult solveLcpLemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& b,
     }
     int z0Row = -1;
     int best = ratioTest(T, entering, z0Row);
+    if (best >= 0 && s.pivotCheckRatio > 0 &&
+        T.entry(best, entering) < s.pivotCheckRatio * T.columnMax(entering) && T.refactor())
+      best = ratioTest(T, entering, z0Row);  // the same test on the fresh tableau
     if (best < 0 && refactorInterval > 0 && T.refactor())
       best = ratioTest(T, entering, z0Row);  // not a rounding ray?
     if (best < 0) {

@@ -108,6 +108,17 @@ TEST(LemkeSolver, RedundantContactsEndSolved) {
   }
 }
 
+// A 40-contact box stack captured from a simulation under lemke!: a pivot of 5.9e-10 that was
+// rounding noise sent the path to an infeasible basis and cycling (pivot limit, 4000 pivots)
+// before small pivots were checked on a fresh tableau.
+TEST(LemkeSolver, NoisyPivotsAreCheckedOnAFreshTableau) {
+  const ContactProblem p = fixtures::loadFixture("redundant/box_stack_10_step1446_island0");
+  const SolveOutcome out = LemkeSolver().solve(p);
+  EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_LE(out.report.residual, 1e-9) << out.report.message;
+  EXPECT_LT(out.report.iterations, 400);
+}
+
 // The answer does not depend on the units of W: the same stack with W and q scaled by 1e-6 and
 // 1e6 (r unchanged) is solved the same way (the LCP is built from W / max diag W).
 TEST(LemkeSolver, UnitsOfWDoNotMatter) {
