@@ -175,7 +175,8 @@ void LemkeSolver::solvePrepared(const PreparedProblem& p, const SolveContext& co
   report.iterations = lcp.pivots;
   report.nativeResidual = lcp.error;
   report.nativeResidualName =
-      "faceted LCP error max(-min z, -min w, |z.w|) / (1 + |b|inf (1 + |z|inf)) (7.4)";
+      "faceted LCP error max(-min z, -min w, |z.w|) / (1 + |b|inf (1 + |z|inf)) (7.4), LCP "
+      "built from W / max diag W";
   if (lcp.status == LcpStatus::NumericalFailure) {
     report.status = SolverStatus::NumericalFailure;
     report.note("lemke: non-finite tableau; start returned");

@@ -8,7 +8,10 @@
 // The faceted friction is too small by up to cos(pi / n_d) and snaps sliding directions to the
 // facets, so the report gives both the native LCP error and the common exact-cone residual (7.4).
 // Ray termination (7.7) and the pivot limit are statuses (Stalled, MaxIterations) with the reason
-// in the message; the answer is then the last basis (finite, in the cone).
+// in the message; the answer is then the last basis (finite, in the cone). The LCP is built from
+// W / s and q / s, s = max diag W (same r; the tableau's entries are O(1) whatever the units), and
+// solved on a perturbed right-hand side (LemkeSettings::perturbation; docs/solvers.md "Lemke on
+// redundant contacts").
 #include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/lemke/LemkeLcp.hpp>
 

@@ -119,6 +119,16 @@ TEST(LemkeSolver, NoisyPivotsAreCheckedOnAFreshTableau) {
   EXPECT_LT(out.report.iterations, 400);
 }
 
+// The same tower at step 134: here the checked path cycles and the plain one solves it, so
+// solveLcpLemke follows the second when the first ends without a solution.
+TEST(LemkeSolver, APathThatCyclesIsFollowedByThePlainPath) {
+  const ContactProblem p = fixtures::loadFixture("redundant/box_stack_10_step134_island0");
+  const SolveOutcome out = LemkeSolver().solve(p);
+  EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_LE(out.report.residual, 1e-9) << out.report.message;
+  EXPECT_LT(out.report.iterations, 1000);  // 800 checked pivots + 131
+}
+
 // The answer does not depend on the units of W: the same stack with W and q scaled by 1e-6 and
 // 1e6 (r unchanged) is solved the same way (the LCP is built from W / max diag W).
 TEST(LemkeSolver, UnitsOfWDoNotMatter) {
