@@ -44,8 +44,9 @@ struct LemkeSettings {
   // redundant contacts such an entry is mostly rounding (a 40-contact box stack of a simulation:
   // pivot 5.9e-10, next pivot 5.7e9, a negative basic value, cycling to the pivot limit; with the
   // check, 2 refactorizations and solved in 123 pivots). At most 20 per path; a path with checks
-  // that has not ended within max(50, 2 size) pivots is followed by the plain path (no checks),
-  // which solves the islands it cycles on (see solveLcpLemke). 0 = never (one plain path).
+  // that has not ended on an accurate solution within max(50, 2 size) pivots is followed by the
+  // plain path (no checks) and the better answer kept (see solveLcpLemke). 0 = never (one plain
+  // path).
   double pivotCheckRatio = 1e-7;
   // [-] perturbation of b relative to |b|_inf (positive, distinct per row) that the path follows;
   // the final basis is solved with the true b. 0 = none.
