@@ -66,7 +66,11 @@ struct StepReport {
   std::vector<IslandReport> islands;
   JointStepReport joints;                    // drift, predicted-state correction, breakage
   std::vector<QuarantineEvent> quarantined;  // bodies and trees isolated in this step
-  double seconds = 0.0;                      // [s] wall clock of the whole step
+  // What a user must hear about, each said once per World (in the step where it first happens):
+  // e.g. a solver forced on an island it cannot take (NAME!: no fallback), whose contacts then
+  // get no impulse. The CLI prints them on stderr; the library prints nothing.
+  std::vector<std::string> warnings;
+  double seconds = 0.0;  // [s] wall clock of the whole step
 
   [[nodiscard]] std::size_t fallbacks() const {
     std::size_t n = 0;

@@ -159,6 +159,9 @@ class World {
   void applyImpulses(IslandWork& island);
   void correctPenetrations();
   void fillIslandReport(const IslandWork& island, IslandReport& report) const;
+  /// Adds a StepReport warning when no solver of the island's plan could run (said once per
+  /// choice of solvers).
+  void warnIfUnsolved(const IslandWork& island, const solvers::SolverChoice& choice);
   void resetReport(double h);
   [[nodiscard]] RowContext rowContext();
   [[nodiscard]] RowSource& rowSource(RowOwner owner);
@@ -185,6 +188,7 @@ class World {
   solvers::SolverInstances solvers_;  // each registry solver created once, reused every step
   StepData step_;                     // this step's data; kept for its capacity
   StepReport report_;                 // the last step's report; kept for its capacity
+  std::vector<std::string> warned_;   // keys of the StepReport::warnings already given
   ProblemObserver problemObserver_;
   double time_ = 0.0;
   std::uint64_t stepCount_ = 0;

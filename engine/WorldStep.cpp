@@ -10,8 +10,10 @@
 #include <coulomb/integrators/PositionUpdate.hpp>
 #include <coulomb/solvers/SolverChooser.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 namespace coulomb::engine {
 
@@ -157,8 +159,28 @@ void World::solveIsland(IslandWork& island) {
               island.plan);
   if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
   solvers::solveWithFallback(problem, island.plan, registry_, solvers_, island.outcome);
+  warnIfUnsolved(island, choice);
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);
+}
+
+void World::warnIfUnsolved(const IslandWork& island, const solvers::SolverChoice& choice) {
+  if (island.outcome.status != solvers::SolverStatus::NotApplicable ||
+      island.assembled.problem.size() == 0)
+    return;
+  const std::string key = choice.text();
+  if (std::find(warned_.begin(), warned_.end(), key) != warned_.end()) return;
+  warned_.push_back(key);
+  std::ostringstream s;
+  s << "solver '" << key << "' cannot run on island " << island.island.id << " ("
+    << island.island.bodies.size() << " bodies, " << island.blocks[kContactRows].count
+    << " contacts, " << island.assembled.problem.size() << " unknowns)";
+  for (const solvers::SolverReport& a : island.outcome.attempts)
+    if (!a.message.empty()) s << "; " << a.solver << ": " << a.message;
+  s << ". No impulse is applied there: its contacts and joints do not act. Said once; every such "
+       "island has status not_applicable in the step report. Choose auto or a chain with a "
+       "fallback.";
+  report_.warnings.push_back(s.str());
 }
 
 void World::applyImpulses(IslandWork& island) {
@@ -199,10 +221,13 @@ void World::resetReport(double h) {
   std::vector<IslandReport> islands = std::move(r.islands);
   std::vector<geometry::JointId> broken = std::move(r.joints.broken);
   std::vector<QuarantineEvent> quarantined = std::move(r.quarantined);
+  std::vector<std::string> warnings = std::move(r.warnings);
   r = StepReport{};  // every number and flag back to its default
   failures.clear();
   broken.clear();
   quarantined.clear();
+  warnings.clear();
+  r.warnings = std::move(warnings);
   r.collisionFailures = std::move(failures);
   r.islands = std::move(islands);  // resized and overwritten by the step
   r.joints.broken = std::move(broken);

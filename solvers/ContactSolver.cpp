@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <exception>
+#include <sstream>
 
 namespace coulomb::solvers {
 
@@ -138,6 +139,22 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   const ResidualValue res = commonResidual(problem, out.impulses, out.velocities);
   report.residual = res.relative;
   report.absoluteResidual = res.absolute;
+  // Never worse than the start, when asked (SolverOptions::neverWorseThanStart).
+  if (options.neverWorseThanStart && report.residual > options.tolerance &&
+      std::isfinite(report.residual) && r != r0) {
+    prepared.toOriginal(r0, work.rs);
+    const ResidualValue startResidual = commonResidual(problem, work.rs, work.us);
+    if (startResidual.relative < report.residual) {
+      std::ostringstream msg;
+      msg << "answer's common residual " << report.residual << " above its start's "
+          << startResidual.relative << ": the start is returned";
+      report.note(msg.str());
+      out.impulses.swap(work.rs);  // both keep their storage for the next solve
+      out.velocities.swap(work.us);
+      report.residual = startResidual.relative;
+      report.absoluteResidual = startResidual.absolute;
+    }
+  }
   if (!std::isfinite(report.residual)) {  // cannot happen with finite r and a valid problem
     report.status = SolverStatus::NumericalFailure;
     out.impulses.setZero();

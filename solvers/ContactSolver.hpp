@@ -3,7 +3,9 @@
 // validate the options and the problem, return at once when there is nothing to do, prepare the
 // problem, choose the start (warm start or 0, whichever has the smaller residual), run the
 // algorithm, then measure the common residual after the last update on the original problem and
-// guarantee a finite answer (a numerical failure is a status, never a NaN).
+// guarantee a finite answer (a numerical failure is a status, never a NaN); with
+// SolverOptions::neverWorseThanStart (the World's) an answer above the tolerance with a larger
+// common residual than the start is replaced by the start (status kept, with a note).
 // A solver implements solvePrepared(); composite solvers (hybrid starts, fallbacks) call other
 // solvers' solvePrepared() on the same PreparedProblem.
 #include <coulomb/solvers/ContactProblem.hpp>
@@ -58,6 +60,7 @@ class ContactSolver {
   struct Workspace {
     PreparedProblem prepared;
     Eigen::VectorXd u, dv, r, s, dvs, r0;
+    Eigen::VectorXd rs, us;  // the start in original variables and its u (never worse than it)
   };
   void run(const ContactProblem& problem, const SolverOptions& options,
            const Eigen::VectorXd* start, SolveOutcome& out, Workspace& work) const;

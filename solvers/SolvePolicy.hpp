@@ -104,7 +104,8 @@ struct SolvePolicy {
   // visibly, and reached in a few warm-started sweeps on stacks); at most 200 iterations per
   // attempt (ac_newton's own cap, so it only shortens Gauss-Seidel and staggered: a cold-started
   // stack needs thousands of sweeps, seconds per step on 200+ boxes; the fallbacks and the warm
-  // start carry the rest, docs/benchmarks.md "Contact step performance").
+  // start carry the rest, docs/benchmarks.md "Contact step performance"); an answer worse than
+  // its start is never applied (SolverOptions::neverWorseThanStart).
   SolverOptions options = simulationOptions();
   ChooserSettings chooser;
   PromotionRule promotion;
@@ -113,6 +114,7 @@ struct SolvePolicy {
     SolverOptions o;
     o.tolerance = 1e-6;
     o.maxIterations = 200;
+    o.neverWorseThanStart = true;
     return o;
   }
   /// nullopt if usable, else the first problem: an empty chain, a bad option or threshold, and

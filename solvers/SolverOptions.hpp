@@ -14,7 +14,8 @@ struct SolverOptions {
   // target; a simulation step is visually exact far above it (1e-4..1e-6 are common in games).
   double tolerance = 1e-8;
   // [iterations: Newton steps or Gauss-Seidel sweeps] 0 = the solver's own default (pgs, bgs:
-  // 10000 sweeps like Siconos' NSGS; ac_newton: 200 like AC11 section 5.2).
+  // 10000 sweeps like Siconos' NSGS; ac_newton: 200 like AC11 section 5.2). Lemke's pivot limit
+  // is only raised by it, never lowered (LemkeOptions).
   int maxIterations = 0;
   // [s] Wall-clock budget, checked once per iteration (a Gauss-Seidel sweep, a Newton step):
   // a corpus run must never hang. Default: no limit (the step loop sets one when it needs to).
@@ -32,6 +33,13 @@ struct SolverOptions {
   // (ChooserSettings::pileStallSweeps): a pgs that stagnates just above the tolerance otherwise
   // spends its whole sweep cap before Newton takes over.
   int stallWindow = 0;
+  // Never return an answer above the tolerance whose common residual is larger than that of the
+  // start (the better of the projected warm start and r = 0): return the start instead, with the
+  // solver's status and a note (ContactSolver::solve). What a simulation applies must be the
+  // least-bad safe answer: a pivoting solver ignores its start and can end far from any answer
+  // (issue 24: lemke on a cut path, residuals up to 1e13, bodies shot away). Default off, so that
+  // a corpus run shows each solver's own answer; on in SolvePolicy::simulationOptions (the World).
+  bool neverWorseThanStart = false;
 };
 
 // The first invalid field, or nullopt.

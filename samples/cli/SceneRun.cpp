@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iostream>
 
 #include "Commands.hpp"
 #include "scenes/SceneRegistry.hpp"
@@ -183,6 +184,7 @@ void runSteps(engine::World& world, std::uint64_t steps, double timeStep, RunMet
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summed += seconds;
     metrics.observe(world, report, seconds);
+    for (const std::string& warning : report.warnings) std::cerr << "warning: " << warning << '\n';
     if (afterStep) afterStep(report);
     if (hasDiverged(world)) {
       metrics.markDiverged();

@@ -6,6 +6,11 @@
 // of B^-1 (the anti-cycling rule that makes every pivot strictly decrease the lexicographic
 // objective, so no basis repeats), floating-point safeguards (i)-(ii) against spurious rays on
 // rank-deficient M, a pivot limit, and a distinct status for the secondary-ray termination.
+// The path follows a perturbed b (the lexicographic rule is the symbolic form of the perturbation
+// b + (eps, eps^2, ...), CPS92 chapter 4): on degenerate problems (redundant contacts: many basic
+// variables at zero) the lexicographic rule decides among rounding noise in floating point and the
+// path ends on spurious rays; a numeric perturbation far above the noise and far below the
+// tolerance removes the ties, and the final basis is solved again with the true b.
 #include <Eigen/Core>
 
 namespace coulomb::solvers {
@@ -30,10 +35,22 @@ struct LemkeSettings {
   double tieTolerance = 1e-12;
   // [pivots] between refactorizations of the tableau from the original data (B^-1 by LU), also
   // done before a ray is declared; 0 = max(50, size); < 0 = never (default). The final basis is
-  // always also solved afresh and the better of the two answers kept. Default never: on the
-  // rank-deficient corpus problems the bases are nearly singular and fresh solves were far worse
-  // (LCP errors 1e2..1e13 on BoxesStack and PerioBox) than the eliminated tableau (3e-9, 5e-2).
+  // always also solved afresh and the better of the two answers kept. Default never: with the
+  // perturbation below it changes no corpus answer and costs 2-4x (before the perturbation, on
+  // degenerate paths, fresh solves of nearly singular bases were far worse, LCP errors 1e2..1e13).
   int refactorInterval = -1;
+  // [-] a pivot below this times the largest entry of its column is checked on a fresh tableau
+  // (refactorization from the original data) before it is taken: on the near-singular bases of
+  // redundant contacts such an entry is mostly rounding (a 40-contact box stack of a simulation:
+  // pivot 5.9e-10, next pivot 5.7e9, a negative basic value, cycling to the pivot limit; with the
+  // check, 2 refactorizations and solved in 123 pivots). At most 20 per path; a path with checks
+  // that has not ended on an accurate solution within max(50, 2 size) pivots is followed by the
+  // plain path (no checks) and the better answer kept (see solveLcpLemke). 0 = never (one plain
+  // path).
+  double pivotCheckRatio = 1e-7;
+  // [-] perturbation of b relative to |b|_inf (positive, distinct per row) that the path follows;
+  // the final basis is solved with the true b. 0 = none.
+  double perturbation = 1e-10;
 };
 
 struct LcpResult {

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -76,6 +77,14 @@ FacetedLcp buildLcp(const PreparedProblem& p, const LemkeOptions& o) {
       qt -= Wcf * lu.solve(L.qf);
     }
   }
+  // Scaled by s = max diag W~ (u / s = (W~ / s) r + q~ / s has the same r): the tableau's entries
+  // are then O(1) next to the unit entries of the slack rows whatever the units of W, so that the
+  // pivot tolerance relative to max|M| means the same on every problem. The slack lambda and the
+  // box variable z2 become lambda / s and z2 / s; neither is part of r.
+  double scale = nc > 0 ? Wt.diagonal().cwiseAbs().maxCoeff() : 1.0;
+  if (!(scale > 0) || !std::isfinite(scale)) scale = 1.0;
+  Wt /= scale;
+  qt /= scale;
   // S, g0 and the extra entries (lambda rows/columns, box columns) per block, in block order.
   L.S = Eigen::MatrixXd::Zero(nc, lcpSize);
   L.g0 = Eigen::VectorXd::Zero(nc);
@@ -156,12 +165,18 @@ void LemkeSolver::solvePrepared(const PreparedProblem& p, const SolveContext& co
                                 Eigen::VectorXd& r, SolverReport& report) const {
   const FacetedLcp L = buildLcp(p, options_);
   LemkeSettings settings = options_.lemke;
-  if (context.options().maxIterations > 0) settings.maxPivots = context.options().maxIterations;
+  // The common iteration cap (sweeps, Newton steps) may raise the pivot limit but never cut a
+  // path short: a basis with z0 still in it answers nothing (the World's cap of 200 did that to
+  // every island above ~20 contacts: residuals up to 1e13 were applied).
+  const int ownLimit =
+      settings.maxPivots > 0 ? settings.maxPivots : std::max(50, 10 * static_cast<int>(L.b.size()));
+  settings.maxPivots = std::max(ownLimit, context.options().maxIterations);
   const LcpResult lcp = solveLcpLemke(L.M, L.b, settings);
   report.iterations = lcp.pivots;
   report.nativeResidual = lcp.error;
   report.nativeResidualName =
-      "faceted LCP error max(-min z, -min w, |z.w|) / (1 + |b|inf (1 + |z|inf)) (7.4)";
+      "faceted LCP error max(-min z, -min w, |z.w|) / (1 + |b|inf (1 + |z|inf)) (7.4), LCP "
+      "built from W / max diag W";
   if (lcp.status == LcpStatus::NumericalFailure) {
     report.status = SolverStatus::NumericalFailure;
     report.note("lemke: non-finite tableau; start returned");

@@ -8,7 +8,10 @@
 // The faceted friction is too small by up to cos(pi / n_d) and snaps sliding directions to the
 // facets, so the report gives both the native LCP error and the common exact-cone residual (7.4).
 // Ray termination (7.7) and the pivot limit are statuses (Stalled, MaxIterations) with the reason
-// in the message; the answer is then the last basis (finite, in the cone).
+// in the message; the answer is then the last basis (finite, in the cone). The LCP is built from
+// W / s and q / s, s = max diag W (same r; the tableau's entries are O(1) whatever the units), and
+// solved on a perturbed right-hand side (LemkeSettings::perturbation; docs/solvers.md "Lemke on
+// redundant contacts").
 #include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/lemke/LemkeLcp.hpp>
 
@@ -25,7 +28,8 @@ struct LemkeOptions {
   // [-] Equality-block regularization eps * max diag(W_ff) added before the Schur elimination
   // (redundant joint rows, SOLVERS.md 10). Default 1e-10 (the role of ODE's CFM).
   double equalityRegularization = 1e-10;
-  // Pivot limit (0 = max(50, 10 size)), lexicographic anti-cycling, tolerances.
+  // Pivot limit (0 = max(50, 10 size)), lexicographic anti-cycling, tolerances. The common
+  // SolverOptions::maxIterations only raises the pivot limit (a path cut short has no answer).
   LemkeSettings lemke;
 };
 

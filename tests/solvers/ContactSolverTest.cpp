@@ -144,3 +144,41 @@ TEST(ContactSolver, AnisotropicSlipDirection) {
     EXPECT_LT((r.tail<2>() - expected).norm(), 1e-10) << e.name;
   }
 }
+
+namespace {
+
+// Returns a huge answer inside the cone (a pivoting solver on a bad basis does that).
+class WildSolver final : public ContactSolver {
+ public:
+  [[nodiscard]] std::string name() const override { return "wild"; }
+  void solvePrepared(const PreparedProblem& /*problem*/, const SolveContext& /*context*/,
+                     Eigen::VectorXd& r, SolverReport& report) const override {
+    r.setZero();
+    r[0] = 1e6;
+    report.status = SolverStatus::Stalled;
+  }
+};
+
+}  // namespace
+
+// With neverWorseThanStart (the World's option), an answer above the tolerance and worse than the
+// start is never returned (issue 24 item 4): the start (here the warm start, projected onto the
+// cone) comes back, with the solver's status. Off (the default), the solver's own answer is.
+TEST(ContactSolver, AnAnswerWorseThanItsStartIsNotReturnedWhenAsked) {
+  const Eigen::Matrix3d W = Eigen::Vector3d(2, 1, 1).asDiagonal();
+  ContactProblem p = fixtures::singleContact(W, Eigen::Vector3d(-2, 0.1, 0), 0.5);
+  EXPECT_EQ(WildSolver().solve(p).impulses[0], 1e6);
+  SolverOptions safe;
+  safe.neverWorseThanStart = true;
+  SolveOutcome out = WildSolver().solve(p, safe);
+  EXPECT_EQ(out.report.status, SolverStatus::Stalled);
+  EXPECT_EQ(out.impulses, Eigen::Vector3d::Zero()) << "r = 0 is the start without a warm start";
+  EXPECT_NE(out.report.message.find("the start is returned"), std::string::npos)
+      << out.report.message;
+  EXPECT_DOUBLE_EQ(out.report.residual, commonResidual(p, out.impulses).relative);
+  p.warmStart = Eigen::Vector3d(0.9, 0.0, 1.0);  // outside the cone: projected first
+  out = WildSolver().solve(p, safe);
+  EXPECT_LT((out.impulses - Eigen::Vector3d(0.9, 0.0, 1.0)).norm(), 1.0);
+  EXPECT_LE(std::hypot(out.impulses[1], out.impulses[2]), 0.5 * out.impulses[0] + 1e-12);
+  EXPECT_LT(out.report.residual, 1.0);
+}

@@ -33,12 +33,26 @@ TEST(LemkeLcp, LexicographicRuleStopsCycling) {
   const Eigen::Vector3d b(-1, -1, -1);
   LemkeSettings plain;
   plain.lexicographic = false;
+  plain.perturbation = 0;  // the perturbation alone also breaks these ties
   plain.maxPivots = 100;
   EXPECT_EQ(solveLcpLemke(M, b, plain).status, LcpStatus::PivotLimit);
-  const LcpResult lex = solveLcpLemke(M, b);
+  LemkeSettings lexOnly;
+  lexOnly.perturbation = 0;
+  const LcpResult lex = solveLcpLemke(M, b, lexOnly);
   ASSERT_EQ(lex.status, LcpStatus::Solved);
   EXPECT_LT(lex.error, 1e-14);
   EXPECT_LE(lex.pivots, 10);
+}
+
+TEST(LemkeLcp, PerturbationAloneStopsCyclingAndKeepsTheAnswerExact) {
+  Eigen::MatrixXd M(3, 3);
+  M << 1, 2, 0, 0, 1, 2, 2, 0, 1;
+  LemkeSettings perturbedOnly;
+  perturbedOnly.lexicographic = false;
+  perturbedOnly.maxPivots = 100;
+  const LcpResult out = solveLcpLemke(M, Eigen::Vector3d(-1, -1, -1), perturbedOnly);
+  ASSERT_EQ(out.status, LcpStatus::Solved);
+  EXPECT_LT(out.error, 1e-15);  // the final basis solved with the true b
 }
 
 TEST(LemkeLcp, RayOnInfeasibleProblem) {

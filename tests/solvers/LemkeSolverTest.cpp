@@ -94,6 +94,74 @@ TEST(LemkeSolver, CorpusFixturesPivotToAnLcpSolution) {
   }
 }
 
+// Redundant contacts (issue 24 item 4): a box stack with four coplanar points per face (52
+// contacts, W of rank 78 / 156) and a periodic box of polyhedra (60 contacts, W of order 1e-4, q
+// with a component on the null space of W). The degenerate path ended on spurious rays (residuals
+// 4.4e-9 and 4.3e-3); nothing slides, so the faceted LCP solution is exact on the cone too.
+TEST(LemkeSolver, RedundantContactsEndSolved) {
+  for (const char* name :
+       {"redundant/BoxesStack1-i100000-32", "redundant/LMGC_100_PR_PerioBox-i00361-60-03000"}) {
+    const SolveOutcome out = LemkeSolver().solve(fixtures::loadFixture(name));
+    EXPECT_EQ(out.report.status, SolverStatus::Converged) << name << ": " << out.report.message;
+    EXPECT_LE(out.report.residual, 1e-10) << name << ": " << out.report.message;
+    EXPECT_EQ(out.report.message.find("RAY"), std::string::npos) << name;
+  }
+}
+
+// A 40-contact box stack captured from a simulation under lemke!: a pivot of 5.9e-10 that was
+// rounding noise sent the path to an infeasible basis and cycling (pivot limit, 4000 pivots)
+// before small pivots were checked on a fresh tableau.
+TEST(LemkeSolver, NoisyPivotsAreCheckedOnAFreshTableau) {
+  const ContactProblem p = fixtures::loadFixture("redundant/box_stack_10_step1446_island0");
+  const SolveOutcome out = LemkeSolver().solve(p);
+  EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_LE(out.report.residual, 1e-9) << out.report.message;
+  EXPECT_LT(out.report.iterations, 400);
+}
+
+// The same tower at steps 134 (the checked path cycles) and 824 (it ends "solved" at an LCP error
+// of 2e-3): the plain path solves both, so solveLcpLemke follows it when the first path ends
+// without an accurate solution.
+TEST(LemkeSolver, APathThatFailsIsFollowedByThePlainPath) {
+  for (const char* name :
+       {"redundant/box_stack_10_step134_island0", "redundant/box_stack_10_step824_island0"}) {
+    const SolveOutcome out = LemkeSolver().solve(fixtures::loadFixture(name));
+    EXPECT_EQ(out.report.status, SolverStatus::Converged) << name << ": " << out.report.message;
+    EXPECT_LE(out.report.residual, 1e-9) << name << ": " << out.report.message;
+    EXPECT_LT(out.report.iterations, 1000) << name;  // at most 800 checked pivots + the plain path
+  }
+}
+
+// The answer does not depend on the units of W: the same stack with W and q scaled by 1e-6 and
+// 1e6 (r unchanged) is solved the same way (the LCP is built from W / max diag W).
+TEST(LemkeSolver, UnitsOfWDoNotMatter) {
+  const ContactProblem base = fixtures::loadFixture("redundant/BoxesStack1-i100000-32");
+  const SolveOutcome ref = LemkeSolver().solve(base);
+  const Eigen::MatrixXd W = base.W.toBlockSparse(std::vector<int>(base.size() / 3, 3)).toDense();
+  for (const double k : {1e-6, 1e6}) {
+    ContactProblem p = base;
+    p.W = DelassusOperator::dense(k * W);
+    p.q = k * base.q;
+    const SolveOutcome out = LemkeSolver().solve(p);
+    EXPECT_EQ(out.report.status, SolverStatus::Converged) << k << ": " << out.report.message;
+    EXPECT_EQ(out.report.iterations, ref.report.iterations) << k;
+    EXPECT_LT((out.impulses - ref.impulses).lpNorm<Eigen::Infinity>(),
+              1e-8 * ref.impulses.lpNorm<Eigen::Infinity>())
+        << k;
+  }
+}
+
+// The common iteration cap (the World's is 200 sweeps) never cuts a pivoting path short: a basis
+// with z0 still in it is no answer (applied, it shot bodies away, issue 24 item 4).
+TEST(LemkeSolver, TheIterationCapDoesNotCutThePathShort) {
+  SolverOptions capped;
+  capped.maxIterations = 20;  // BoxesStack needs about 115 pivots
+  const SolveOutcome out =
+      LemkeSolver().solve(fixtures::loadFixture("redundant/BoxesStack1-i100000-32"), capped);
+  EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_GT(out.report.iterations, 20);
+}
+
 TEST(LemkeSolver, TooLargeIsNotApplicable) {
   LemkeOptions small;
   small.maxLcpSize = 20;
