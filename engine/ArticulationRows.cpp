@@ -50,15 +50,6 @@ bool coversEveryRow(const std::vector<RowBlockSlot>& slots, const Eigen::VectorX
 }
 }  // namespace
 
-struct ArticulationStage::TreeRows {
-  TreeRows(std::int32_t index, const joints::tree::Articulation& model, const Eigen::VectorXd& q)
-      : articulation(index), response(model, q) {}
-  std::int32_t articulation;
-  joints::tree::ArticulationImpulse response;
-  std::vector<int> blocks;                 // row blocks with a side on this tree
-  std::vector<Eigen::MatrixXd> jacobians;  // per block: k x nv joint-space rows (both sides)
-};
-
 void ArticulationStage::appendEdges(std::uint8_t owner, const RowContext& context,
                                     StepEdges& edges) {
   const double h = context.h;
@@ -298,20 +289,35 @@ void ArticulationStage::storeImpulses(const joints::RowSet& rows, joints::BlockR
   }
 }
 
-std::vector<ArticulationStage::TreeRows> ArticulationStage::treeRows(
-    const joints::RowSet& rows, const geometry::BodyState& state) const {
-  std::vector<TreeRows> trees;
-  std::map<std::int32_t, std::size_t> treeOf;  // articulation slot -> index in `trees`
+ArticulationStage::TreeRows& ArticulationStage::treeOf(std::int32_t articulation) const {
+  std::int32_t& index = treeIndex_[static_cast<std::size_t>(articulation)];
+  if (index < 0) {
+    index = static_cast<std::int32_t>(treeCount_++);
+    if (trees_.size() < treeCount_) trees_.emplace_back();
+    TreeRows& tree = trees_[static_cast<std::size_t>(index)];
+    const Record& r = records_[static_cast<std::size_t>(articulation)];
+    tree.articulation = articulation;
+    tree.response.reset(*r.model, r.q);
+    tree.blocks.clear();
+  }
+  return trees_[static_cast<std::size_t>(index)];
+}
+
+void ArticulationStage::treeRows(const joints::RowSet& rows,
+                                 const geometry::BodyState& state) const {
+  treeCount_ = 0;
+  treeIndex_.assign(records_.size(), -1);
+  // The next Jacobian slot of `tree`, sized k x nv (storage kept when the size repeats).
+  const auto nextJacobian = [](TreeRows& tree) -> Eigen::MatrixXd& {
+    if (tree.jacobians.size() <= tree.blocks.size()) tree.jacobians.emplace_back();
+    return tree.jacobians[tree.blocks.size()];
+  };
   for (int k = 0; k < static_cast<int>(rows.blocks.size()); ++k) {
     const RowBlock& block = rows.blocks[k];
     if (std::optional<Eigen::RowVectorXd> row = couplingRow(block)) {  // joint space already
-      const LinkRef link = linkOfBody_[block.bodyA.index];
-      auto [it, inserted] = treeOf.try_emplace(link.articulation, trees.size());
-      if (inserted)
-        trees.emplace_back(link.articulation, *records_[link.articulation].model,
-                           records_[link.articulation].q);
-      trees[it->second].blocks.push_back(k);
-      trees[it->second].jacobians.emplace_back(std::move(*row));
+      TreeRows& tree = treeOf(linkOfBody_[block.bodyA.index].articulation);
+      nextJacobian(tree) = *row;
+      tree.blocks.push_back(k);
       continue;
     }
     for (const bool sideB : {false, true}) {
@@ -320,22 +326,21 @@ std::vector<ArticulationStage::TreeRows> ArticulationStage::treeRows(
       const LinkRef link = linkOfBody_[body.index];
       const Record& r = records_[link.articulation];
       if (r.model->nv() == 0) continue;
-      auto [it, inserted] = treeOf.try_emplace(link.articulation, trees.size());
-      if (inserted) trees.emplace_back(link.articulation, *r.model, r.q);
-      TreeRows& tree = trees[it->second];
-      const Eigen::MatrixXd jointRows =
-          (sideB ? block.jacobianB : block.jacobianA) *
-          joints::tree::twistJacobian(*r.model, tree.response.kinematics(), link.link,
-                                      state.poses[body.index].position);
+      TreeRows& tree = treeOf(link.articulation);
+      joints::tree::twistJacobian(*r.model, tree.response.kinematics(), link.link,
+                                  state.poses[body.index].position, twist_);
+      const joints::RowJacobian& side = sideB ? block.jacobianB : block.jacobianA;
       if (!tree.blocks.empty() && tree.blocks.back() == k) {
-        tree.jacobians.back() += jointRows;  // both sides on this tree (a loop closure)
+        // both sides on this tree (a loop closure)
+        tree.jacobians[tree.blocks.size() - 1].noalias() += side * twist_;
       } else {
+        Eigen::MatrixXd& jointRows = nextJacobian(tree);
+        jointRows.resize(side.rows(), twist_.cols());
+        jointRows.noalias() = side * twist_;
         tree.blocks.push_back(k);
-        tree.jacobians.push_back(jointRows);
       }
     }
   }
-  return trees;
 }
 
 int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
@@ -343,11 +348,13 @@ int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
                                          DelassusBlocks& blocks) const {
   int degreesOfFreedom = 0;
   blocks.clear();
-  for (const TreeRows& tree : treeRows(rows, state)) {
+  treeRows(rows, state);
+  for (std::size_t t = 0; t < treeCount_; ++t) {
+    const TreeRows& tree = trees_[t];
     degreesOfFreedom += records_[tree.articulation].model->nv();
     // M^-1 J_t^T, one impulse-level ABA pass per row.
-    if (minvJt_.size() < tree.jacobians.size()) minvJt_.resize(tree.jacobians.size());
-    for (std::size_t i = 0; i < tree.jacobians.size(); ++i) {
+    if (minvJt_.size() < tree.blocks.size()) minvJt_.resize(tree.blocks.size());
+    for (std::size_t i = 0; i < tree.blocks.size(); ++i) {
       const Eigen::MatrixXd& J = tree.jacobians[i];
       Eigen::MatrixXd& columns = minvJt_[i];
       columns.resize(J.cols(), J.rows());
@@ -396,30 +403,28 @@ int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
   return degreesOfFreedom;
 }
 
-std::vector<Eigen::VectorXd> ArticulationStage::jointImpulses(
-    const std::vector<TreeRows>& trees, const std::vector<RowBlockSlot>& slots,
-    const Eigen::VectorXd& lambda) const {
-  std::vector<Eigen::VectorXd> out;
-  for (const TreeRows& tree : trees) {
-    Eigen::VectorXd tau = Eigen::VectorXd::Zero(records_[tree.articulation].model->nv());
+void ArticulationStage::jointImpulses(const std::vector<RowBlockSlot>& slots,
+                                      const Eigen::VectorXd& lambda) const {
+  for (std::size_t t = 0; t < treeCount_; ++t) {
+    TreeRows& tree = trees_[t];
+    jointTau_.setZero(records_[tree.articulation].model->nv());
     for (std::size_t i = 0; i < tree.blocks.size(); ++i) {
       const RowBlockSlot& slot = slots[tree.blocks[i]];
-      tau += tree.jacobians[i].transpose() * lambda.segment(slot.offset, slot.rows);
+      jointTau_.noalias() += tree.jacobians[i].transpose() * lambda.segment(slot.offset, slot.rows);
     }
-    out.push_back(tree.response.applyInverseMass(tau));  // M^-1 J_t^T lambda
+    tree.response.applyInverseMass(jointTau_, tree.change);  // M^-1 J_t^T lambda
   }
-  return out;
 }
 
 void ArticulationStage::applyImpulses(const joints::RowSet& rows,
                                       const std::vector<RowBlockSlot>& slots,
                                       const Eigen::VectorXd& lambda, geometry::BodyState& state) {
   if (!coversEveryRow(slots, lambda)) return;  // a solve that returned no impulses
-  const std::vector<TreeRows> trees = treeRows(rows, state);
-  const std::vector<Eigen::VectorXd> change = jointImpulses(trees, slots, lambda);
-  for (std::size_t t = 0; t < trees.size(); ++t) {
-    Record& r = records_[trees[t].articulation];
-    r.qd += change[t];
+  treeRows(rows, state);
+  jointImpulses(slots, lambda);
+  for (std::size_t t = 0; t < treeCount_; ++t) {
+    Record& r = records_[trees_[t].articulation];
+    r.qd += trees_[t].change;
     updateProxies(r, state);
   }
 }
@@ -429,11 +434,11 @@ void ArticulationStage::applyPseudoImpulses(const joints::RowSet& rows,
                                             const Eigen::VectorXd& lambda, double h,
                                             geometry::BodyState& state) {
   if (!coversEveryRow(slots, lambda)) return;  // a solve that returned no impulses
-  const std::vector<TreeRows> trees = treeRows(rows, state);
-  const std::vector<Eigen::VectorXd> change = jointImpulses(trees, slots, lambda);
-  for (std::size_t t = 0; t < trees.size(); ++t) {
-    Record& r = records_[trees[t].articulation];
-    integrators::integrateConfiguration(*r.model, r.q, change[t], h);
+  treeRows(rows, state);
+  jointImpulses(slots, lambda);
+  for (std::size_t t = 0; t < treeCount_; ++t) {
+    Record& r = records_[trees_[t].articulation];
+    integrators::integrateConfiguration(*r.model, r.q, trees_[t].change, h);
     updateProxies(r, state);
   }
 }

@@ -273,8 +273,10 @@ const std::vector<JointMotorDesc>& ArticulationStage::motors(ArticulationId id) 
 }
 
 void ArticulationStage::updateProxies(Record& r, geometry::BodyState& state) const {
-  const joints::tree::TreeKinematics kin = joints::tree::forwardKinematics(*r.model, r.q);
-  const std::vector<geometry::Vector6d> v = joints::tree::linkVelocities(*r.model, kin, r.qd);
+  joints::tree::forwardKinematics(*r.model, r.q, r.proxyKinematics);
+  joints::tree::linkVelocities(*r.model, r.proxyKinematics, r.qd, r.proxyVelocities);
+  const joints::tree::TreeKinematics& kin = r.proxyKinematics;
+  const std::vector<geometry::Vector6d>& v = r.proxyVelocities;
   r.linkPoses = kin.worldPoses;
   for (std::size_t i = 0; i < r.linkBodies.size(); ++i) {
     const std::uint32_t body = r.linkBodies[i].index;
@@ -289,7 +291,9 @@ void ArticulationStage::predictVelocities(const Eigen::Vector3d& gravity, double
                                           geometry::BodyState& state) {
   for (Record& r : records_) {
     if (r.model->gravity() != gravity) r.model = std::make_unique<Articulation>(r.links, gravity);
-    r.qd = integrators::predictArticulationVelocity(*r.model, r.q, r.qd, r.tau + r.constantTau, h);
+    r.totalTau = r.tau;
+    r.totalTau += r.constantTau;
+    integrators::predictArticulationVelocity(*r.model, r.q, r.qd, r.totalTau, h, r.aba, r.qdd);
     updateProxies(r, state);
   }
 }

@@ -26,6 +26,8 @@
 #include <coulomb/geometry/Ids.hpp>
 #include <coulomb/joints/RowSet.hpp>
 #include <coulomb/joints/tree/Articulation.hpp>
+#include <coulomb/joints/tree/ArticulationImpulse.hpp>
+#include <coulomb/joints/tree/TreeDynamics.hpp>
 
 #include <map>
 #include <memory>
@@ -146,6 +148,12 @@ class ArticulationStage final : public RowSource {
     double errorReduction = 0.2;
     bool selfCollision = false;
     std::uint32_t generation = 0;
+    // The step's scratch, kept for its storage: ABA's per-link values, tau + constantTau, qdd,
+    // the proxies' kinematics and link velocities.
+    joints::tree::AbaWorkspace aba;
+    Eigen::VectorXd totalTau, qdd;
+    joints::tree::TreeKinematics proxyKinematics;
+    std::vector<geometry::Vector6d> proxyVelocities;
   };
   enum class ConstraintKind : std::uint8_t { Lower, Upper, Closure, Motor, Coupling, Friction };
   struct TreeConstraint {
@@ -153,13 +161,21 @@ class ArticulationStage final : public RowSource {
     ConstraintKind kind = ConstraintKind::Lower;
     std::int32_t index = 0;  // link (limits, friction), closure, motor or coupling
   };
-  struct TreeRows;  // per tree: the joint-space Jacobians of the row blocks on it
+  // Per tree touched by a row set: the joint-space Jacobians of the row blocks on it.
+  struct TreeRows {
+    std::int32_t articulation = -1;
+    joints::tree::ArticulationImpulse response;
+    std::vector<int> blocks;                 // row blocks with a side on this tree
+    std::vector<Eigen::MatrixXd> jacobians;  // first blocks.size(): k x nv (both sides)
+    Eigen::VectorXd change;                  // M^-1 J_t^T lambda (jointImpulses)
+  };
 
   Record& record(geometry::ArticulationId id);
   [[nodiscard]] const Record& record(geometry::ArticulationId id) const;
   void updateProxies(Record& r, geometry::BodyState& state) const;
-  [[nodiscard]] std::vector<TreeRows> treeRows(const joints::RowSet& rows,
-                                               const geometry::BodyState& state) const;
+  /// Fills trees_[0, treeCount_) for `rows` (storage kept between calls).
+  void treeRows(const joints::RowSet& rows, const geometry::BodyState& state) const;
+  TreeRows& treeOf(std::int32_t articulation) const;
   [[nodiscard]] joints::RowBlock jointRateBlock(const Record& r, int link, double sign) const;
   [[nodiscard]] joints::RowBlock motorBlock(const Record& r, int motor, double h) const;
   [[nodiscard]] joints::RowBlock frictionBlock(const Record& r, int link, double h) const;
@@ -169,14 +185,19 @@ class ArticulationStage final : public RowSource {
   [[nodiscard]] std::optional<Eigen::RowVectorXd> couplingRow(const joints::RowBlock& block) const;
   [[nodiscard]] joints::RowBlock rowBlockOf(const TreeConstraint& c,
                                             const geometry::BodyState& state, double h) const;
-  [[nodiscard]] std::vector<Eigen::VectorXd> jointImpulses(const std::vector<TreeRows>& trees,
-                                                           const std::vector<RowBlockSlot>& slots,
-                                                           const Eigen::VectorXd& lambda) const;
+  /// Each filled tree's `change` = M^-1 J_t^T lambda.
+  void jointImpulses(const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda) const;
 
   std::vector<Record> records_;
   // addDelassusBlocks' M^-1 J_t^T per row block and one impulse-level column, kept for storage.
   mutable std::vector<Eigen::MatrixXd> minvJt_;
-  mutable Eigen::VectorXd column_, jointRow_;
+  mutable Eigen::VectorXd column_, jointRow_, jointTau_;
+  // treeRows' trees (the first treeCount_ are this call's), tree index per articulation slot
+  // (-1: none), the twist Jacobian of one row side: kept between calls for their storage.
+  mutable std::vector<TreeRows> trees_;
+  mutable std::size_t treeCount_ = 0;
+  mutable std::vector<std::int32_t> treeIndex_;
+  mutable Eigen::Matrix<double, 6, Eigen::Dynamic> twist_;
   std::vector<LinkRef> linkOfBody_;          // per body slot
   std::vector<TreeConstraint> constraints_;  // this step's, indexed by the edges' items
 };

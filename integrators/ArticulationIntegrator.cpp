@@ -75,6 +75,16 @@ Eigen::VectorXd predictArticulationVelocity(const joints::tree::Articulation& ar
   return qd + h * joints::tree::forwardDynamics(articulation, q, qd, tau, linkWrenches);
 }
 
+void predictArticulationVelocity(const joints::tree::Articulation& articulation,
+                                 const Eigen::VectorXd& q, Eigen::VectorXd& qd,
+                                 const Eigen::VectorXd& tau, double h,
+                                 joints::tree::AbaWorkspace& work, Eigen::VectorXd& qdd) {
+  if (!std::isfinite(h) || h < 0.0)
+    throw std::invalid_argument("predictArticulationVelocity: h must be finite and >= 0");
+  joints::tree::forwardDynamics(articulation, q, qd, tau, {}, work, qdd);
+  qd += h * qdd;
+}
+
 void stepArticulation(const joints::tree::Articulation& articulation, Eigen::VectorXd& q,
                       Eigen::VectorXd& qd, const Eigen::VectorXd& tau, double h,
                       std::span<const geometry::Vector6d> linkWrenches) {

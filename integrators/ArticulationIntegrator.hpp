@@ -8,6 +8,7 @@
 // (exact for a constant twist over the step); quaternions are re-normalised. World::step splits
 // the two halves (predict velocities, contacts, then positions); stepArticulation does both.
 #include <coulomb/joints/tree/Articulation.hpp>
+#include <coulomb/joints/tree/TreeDynamics.hpp>
 
 #include <span>
 
@@ -22,6 +23,12 @@ Eigen::VectorXd predictArticulationVelocity(const joints::tree::Articulation& ar
                                             const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                             const Eigen::VectorXd& tau, double h,
                                             std::span<const geometry::Vector6d> linkWrenches = {});
+/// The same in place, qd <- qd + h qdd, with the algorithm's values in `work` and qdd in `qdd`
+/// (World::step's form: no allocation once sized).
+void predictArticulationVelocity(const joints::tree::Articulation& articulation,
+                                 const Eigen::VectorXd& q, Eigen::VectorXd& qd,
+                                 const Eigen::VectorXd& tau, double h,
+                                 joints::tree::AbaWorkspace& work, Eigen::VectorXd& qdd);
 
 /// One full semi-implicit Euler step without contacts: qd <- v*, then q <- q (+) h qd.
 void stepArticulation(const joints::tree::Articulation& articulation, Eigen::VectorXd& q,

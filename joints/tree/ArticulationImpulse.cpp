@@ -9,13 +9,20 @@ namespace coulomb::joints::tree {
 using geometry::Matrix6d;
 using geometry::Vector6d;
 
-ArticulationImpulse::ArticulationImpulse(const Articulation& articulation, const Eigen::VectorXd& q)
-    : articulation_(&articulation), kinematics_(forwardKinematics(articulation, q)) {
+ArticulationImpulse::ArticulationImpulse(const Articulation& articulation,
+                                         const Eigen::VectorXd& q) {
+  reset(articulation, q);
+}
+
+void ArticulationImpulse::reset(const Articulation& articulation, const Eigen::VectorXd& q) {
+  articulation_ = &articulation;
+  forwardKinematics(articulation, q, kinematics_);
   const int n = articulation.linkCount();
   const auto size = static_cast<size_t>(n);
   u_.resize(size);
   dInverse_.resize(size);
-  std::vector<Matrix6d> inertiaA(size);
+  std::vector<Matrix6d>& inertiaA = inertiaA_;
+  inertiaA.resize(size);
   for (int i = 0; i < n; ++i) inertiaA[static_cast<size_t>(i)] = articulation.spatialInertia(i);
   // ABA pass 2 (Table 7.1) restricted to the inertias: I^a = I^A - U D^-1 U^T, I^A_p += X^T I^a X.
   for (int i = n - 1; i >= 0; --i) {

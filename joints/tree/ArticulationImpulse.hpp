@@ -30,6 +30,11 @@ class ArticulationImpulse {
  public:
   /// Articulated inertias at q (checks q; std::domain_error if a joint's D is singular).
   ArticulationImpulse(const Articulation& articulation, const Eigen::VectorXd& q);
+  /// Empty: reset() before any other use.
+  ArticulationImpulse() = default;
+  /// The same as constructing anew, reusing this object's storage (the step's form: no
+  /// allocation once sized for the largest articulation it has seen).
+  void reset(const Articulation& articulation, const Eigen::VectorXd& q);
 
   [[nodiscard]] const TreeKinematics& kinematics() const { return kinematics_; }
 
@@ -66,13 +71,14 @@ class ArticulationImpulse {
   std::vector<geometry::Vector6d> linkImpulsesOf(std::span<const PointImpulseRow> rows,
                                                  const Eigen::VectorXd& x) const;
 
-  const Articulation* articulation_;  // not owned
+  const Articulation* articulation_ = nullptr;  // not owned
   TreeKinematics kinematics_;
   std::vector<ForceColumns> u_;        // U_i = I^A_i S_i
   std::vector<JointMatrix> dInverse_;  // D_i^-1 = (S_i^T I^A_i S_i + armature)^-1
   // The sweeps' per-link values, kept for their storage.
   mutable std::vector<geometry::Vector6d> bias_, change_;
   mutable std::vector<JointVector> uForce_;
+  std::vector<geometry::Matrix6d> inertiaA_;  // reset()'s articulated inertias
   void sweep(std::span<const geometry::Vector6d> linkImpulses, const Eigen::VectorXd& jointImpulse,
              Eigen::VectorXd& dqd) const;
 };

@@ -48,17 +48,33 @@ JointMatrix invertJointInertia(const Articulation& articulation, int i, const Jo
 Eigen::VectorXd forwardDynamics(const Articulation& articulation, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& qd, const Eigen::VectorXd& tau,
                                 std::span<const Vector6d> linkWrenches) {
+  AbaWorkspace work;
+  Eigen::VectorXd qdd;
+  forwardDynamics(articulation, q, qd, tau, linkWrenches, work, qdd);
+  return qdd;
+}
+
+void forwardDynamics(const Articulation& articulation, const Eigen::VectorXd& q,
+                     const Eigen::VectorXd& qd, const Eigen::VectorXd& tau,
+                     std::span<const Vector6d> linkWrenches, AbaWorkspace& work,
+                     Eigen::VectorXd& qdd) {
   articulation.checkVelocity(qd, "qd");
   articulation.checkVelocity(tau, "tau");
   checkWrenches(articulation, linkWrenches);
-  const TreeKinematics kin = forwardKinematics(articulation, q);
+  forwardKinematics(articulation, q, work.kinematics);
+  const TreeKinematics& kin = work.kinematics;
   const int n = articulation.linkCount();
   const auto size = static_cast<size_t>(n);
-  std::vector<Vector6d> v(size), c(size), pA(size), a(size);
-  std::vector<Matrix6d> inertiaA(size);
-  std::vector<ForceColumns> u(size);
-  std::vector<JointMatrix> dInverse(size);
-  std::vector<JointVector> uForce(size);
+  for (auto* links : {&work.v, &work.c, &work.pA, &work.a}) links->resize(size);
+  work.inertiaA.resize(size);
+  work.u.resize(size);
+  work.dInverse.resize(size);
+  work.uForce.resize(size);
+  std::vector<Vector6d>&v = work.v, &c = work.c, &pA = work.pA, &a = work.a;
+  std::vector<Matrix6d>& inertiaA = work.inertiaA;
+  std::vector<ForceColumns>& u = work.u;
+  std::vector<JointMatrix>& dInverse = work.dInverse;
+  std::vector<JointVector>& uForce = work.uForce;
 
   // Pass 1 (root to leaves): velocities, velocity-product accelerations c_i = v_i x v_J (c_J = 0
   // for our joints), rigid-body inertias and bias forces p_i = v_i x* I_i v_i - f_ext.
@@ -87,8 +103,10 @@ Eigen::VectorXd forwardDynamics(const Articulation& articulation, const Eigen::V
       JointMatrix d = s.transpose() * u[k];
       d.diagonal().array() += joint.armature;
       dInverse[k] = invertJointInertia(articulation, i, d);
-      uForce[k] = tau.segment(articulation.vIndex(i), dofs) - joint.damping * qdi -
-                  s.transpose() * pA[k];  // u_i = tau_i - S_i^T p^A_i
+      // u_i = tau_i - S_i^T p^A_i (the product first: in one expression with the segments of
+      // tau and qd, Eigen would evaluate it into a heap temporary)
+      uForce[k].noalias() = s.transpose() * pA[k];
+      uForce[k] = tau.segment(articulation.vIndex(i), dofs) - joint.damping * qdi - uForce[k];
       childInertia -= u[k] * dInverse[k] * u[k].transpose();
       childBias += u[k] * (dInverse[k] * uForce[k]);
     }
@@ -101,7 +119,7 @@ Eigen::VectorXd forwardDynamics(const Articulation& articulation, const Eigen::V
   // Pass 3 (root to leaves): accelerations, with a_0 = -g.
   const Vector6d baseAcceleration =
       geometry::motionVector(Eigen::Vector3d::Zero(), -articulation.gravity());
-  Eigen::VectorXd qdd(articulation.nv());
+  qdd.resize(articulation.nv());
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<size_t>(i);
     const int p = articulation.parent(i);
@@ -115,7 +133,6 @@ Eigen::VectorXd forwardDynamics(const Articulation& articulation, const Eigen::V
     qdd.segment(articulation.vIndex(i), s.cols()) = qddi;
     a[k] += s * qddi;
   }
-  return qdd;
 }
 
 Eigen::VectorXd inverseDynamics(const Articulation& articulation, const Eigen::VectorXd& q,

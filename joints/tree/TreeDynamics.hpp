@@ -11,8 +11,10 @@
 // std::invalid_argument names the link/joint; a joint whose subtree has no inertia along its
 // motion (S^T I^A S singular) throws std::domain_error naming the joint instead of a NaN.
 #include <coulomb/joints/tree/Articulation.hpp>
+#include <coulomb/joints/tree/TreeKinematics.hpp>
 
 #include <span>
+#include <vector>
 
 namespace coulomb::joints::tree {
 
@@ -20,6 +22,23 @@ namespace coulomb::joints::tree {
 Eigen::VectorXd forwardDynamics(const Articulation& articulation, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& qd, const Eigen::VectorXd& tau,
                                 std::span<const geometry::Vector6d> linkWrenches = {});
+
+/// The per-link values of the articulated-body algorithm, kept by a caller that runs it every
+/// step so that it allocates nothing once sized. One workspace is not for two calls at once.
+struct AbaWorkspace {
+  TreeKinematics kinematics;
+  std::vector<geometry::Vector6d> v, c, pA, a;
+  std::vector<geometry::Matrix6d> inertiaA;
+  std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>> u;  // U_i = I^A_i S_i
+  std::vector<JointMatrix> dInverse;
+  std::vector<JointVector> uForce;
+};
+
+/// The same into `qdd`, the per-link values in `work`.
+void forwardDynamics(const Articulation& articulation, const Eigen::VectorXd& q,
+                     const Eigen::VectorXd& qd, const Eigen::VectorXd& tau,
+                     std::span<const geometry::Vector6d> linkWrenches, AbaWorkspace& work,
+                     Eigen::VectorXd& qdd);
 
 /// tau (nv) that produces qdd, by the recursive Newton-Euler algorithm.
 Eigen::VectorXd inverseDynamics(const Articulation& articulation, const Eigen::VectorXd& q,

@@ -17,9 +17,15 @@ void checkLink(const Articulation& articulation, int link) {
 }  // namespace
 
 TreeKinematics forwardKinematics(const Articulation& articulation, const Eigen::VectorXd& q) {
+  TreeKinematics kin;
+  forwardKinematics(articulation, q, kin);
+  return kin;
+}
+
+void forwardKinematics(const Articulation& articulation, const Eigen::VectorXd& q,
+                       TreeKinematics& kin) {
   articulation.checkConfiguration(q);
   const auto n = static_cast<size_t>(articulation.linkCount());
-  TreeKinematics kin;
   kin.parentToLink.resize(n);
   kin.worldPoses.resize(n);
   for (int i = 0; i < articulation.linkCount(); ++i) {
@@ -34,14 +40,20 @@ TreeKinematics forwardKinematics(const Articulation& articulation, const Eigen::
         p < 0 ? linkInParent : kin.worldPoses[static_cast<size_t>(p)] * linkInParent;
     kin.worldPoses[k].rotation.normalize();
   }
-  return kin;
 }
 
 std::vector<geometry::Vector6d> linkVelocities(const Articulation& articulation,
                                                const TreeKinematics& kinematics,
                                                const Eigen::VectorXd& qd) {
+  std::vector<geometry::Vector6d> v;
+  linkVelocities(articulation, kinematics, qd, v);
+  return v;
+}
+
+void linkVelocities(const Articulation& articulation, const TreeKinematics& kinematics,
+                    const Eigen::VectorXd& qd, std::vector<geometry::Vector6d>& v) {
   articulation.checkVelocity(qd);
-  std::vector<geometry::Vector6d> v(static_cast<size_t>(articulation.linkCount()));
+  v.resize(static_cast<size_t>(articulation.linkCount()));
   for (int i = 0; i < articulation.linkCount(); ++i) {
     const int p = articulation.parent(i);
     const auto k = static_cast<size_t>(i);
@@ -51,7 +63,6 @@ std::vector<geometry::Vector6d> linkVelocities(const Articulation& articulation,
                  : kinematics.parentToLink[k].applyMotion(v[static_cast<size_t>(p)]);
     if (s.cols() > 0) v[k] += s * qd.segment(articulation.vIndex(i), s.cols());
   }
-  return v;
 }
 
 Eigen::Vector3d pointVelocity(const Articulation& articulation, const TreeKinematics& kinematics,
@@ -64,9 +75,16 @@ Eigen::Vector3d pointVelocity(const Articulation& articulation, const TreeKinema
 Eigen::Matrix<double, 6, Eigen::Dynamic> twistJacobian(const Articulation& articulation,
                                                        const TreeKinematics& kinematics, int link,
                                                        const Eigen::Vector3d& worldPoint) {
+  Eigen::Matrix<double, 6, Eigen::Dynamic> jacobian;
+  twistJacobian(articulation, kinematics, link, worldPoint, jacobian);
+  return jacobian;
+}
+
+void twistJacobian(const Articulation& articulation, const TreeKinematics& kinematics, int link,
+                   const Eigen::Vector3d& worldPoint,
+                   Eigen::Matrix<double, 6, Eigen::Dynamic>& jacobian) {
   checkLink(articulation, link);
-  Eigen::Matrix<double, 6, Eigen::Dynamic> jacobian =
-      Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, articulation.nv());
+  jacobian.setZero(6, articulation.nv());
   // Walk from the link to the root: each joint's motion subspace, moved to world coordinates,
   // gives its columns (Featherstone sec. 4.4): omega = R s_w, v_point = R s_v + omega x (p - o).
   for (int j = link; j >= 0; j = articulation.parent(j)) {
@@ -81,7 +99,6 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> twistJacobian(const Articulation& artic
       jacobian.col(column).tail<3>() = omega;
     }
   }
-  return jacobian;
 }
 
 Eigen::Matrix<double, 3, Eigen::Dynamic> pointJacobian(const Articulation& articulation,

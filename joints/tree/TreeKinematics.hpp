@@ -22,11 +22,17 @@ struct TreeKinematics {
 
 /// Link transforms and world poses at q (checks q; O(n)).
 TreeKinematics forwardKinematics(const Articulation& articulation, const Eigen::VectorXd& q);
+/// The same into `out`, reusing its storage (no allocation once sized: the step's form).
+void forwardKinematics(const Articulation& articulation, const Eigen::VectorXd& q,
+                       TreeKinematics& out);
 
 /// Spatial velocity of every link in its own frame, (omega; velocity of the link origin), O(n).
 std::vector<geometry::Vector6d> linkVelocities(const Articulation& articulation,
                                                const TreeKinematics& kinematics,
                                                const Eigen::VectorXd& qd);
+/// The same into `out`, reusing its storage.
+void linkVelocities(const Articulation& articulation, const TreeKinematics& kinematics,
+                    const Eigen::VectorXd& qd, std::vector<geometry::Vector6d>& out);
 
 /// World velocity of `worldPoint` moving with link `link`.
 Eigen::Vector3d pointVelocity(const Articulation& articulation, const TreeKinematics& kinematics,
@@ -40,6 +46,9 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> pointJacobian(const Articulation& artic
 Eigen::Matrix<double, 6, Eigen::Dynamic> twistJacobian(const Articulation& articulation,
                                                        const TreeKinematics& kinematics, int link,
                                                        const Eigen::Vector3d& worldPoint);
+/// The same into `out` (6 x nv), reusing its storage.
+void twistJacobian(const Articulation& articulation, const TreeKinematics& kinematics, int link,
+                   const Eigen::Vector3d& worldPoint, Eigen::Matrix<double, 6, Eigen::Dynamic>& out);
 
 /// The spatial force in link coordinates (torque about the link origin; force) of a world force
 /// applied at a world point on the link: the form the dynamics take as an external wrench.

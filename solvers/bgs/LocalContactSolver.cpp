@@ -5,6 +5,7 @@
 #include <coulomb/solvers/pgs/PgsSolver.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -128,8 +129,10 @@ void angleScan(const LocalContactData& d, const Eigen::Vector3d& qt, double mu,
     return u[1] * std::sin(th) - u[2] * std::cos(th);
   };
   const double twoPi = 2.0 * std::numbers::pi;
-  std::vector<double> grid;
-  for (int k = 0; k <= s.scanAngles; ++k) grid.push_back(twoPi * k / s.scanAngles);
+  // The grid: scanAngles + 1 uniform angles merged with up to four angles beside the zeros of the
+  // denominator (merged on the fly: this runs inside every bgs sweep and allocates nothing).
+  std::array<double, 4> extra{};
+  int extraCount = 0;
   const double R = std::hypot(a, b);
   if (mu * R > 0 && W(0, 0) <= mu * R) {  // denominator zero at phi +- acos(-W_NN / (mu R))
     const double phi = std::atan2(b, a), c = std::acos(std::clamp(-W(0, 0) / (mu * R), -1.0, 1.0));
@@ -137,12 +140,28 @@ void angleScan(const LocalContactData& d, const Eigen::Vector3d& qt, double mu,
       for (double eps : {-1e-12, 1e-12}) {
         double t = std::fmod(th + eps, twoPi);
         if (t < 0) t += twoPi;
-        grid.push_back(t);
+        extra[static_cast<std::size_t>(extraCount++)] = t;
       }
   }
-  std::sort(grid.begin(), grid.end());
-  for (size_t k = 0; k + 1 < grid.size(); ++k) {
-    double lo = grid[k], hi = grid[k + 1];
+  for (int i = 1; i < extraCount; ++i)  // insertion sort of at most four angles
+    for (int j = i; j > 0 && extra[static_cast<std::size_t>(j)] <
+                                 extra[static_cast<std::size_t>(j - 1)];
+         --j)
+      std::swap(extra[static_cast<std::size_t>(j)], extra[static_cast<std::size_t>(j - 1)]);
+  const int gridSize = s.scanAngles + 1 + extraCount;
+  int nextUniform = 0, nextExtra = 0;
+  const auto nextAngle = [&] {
+    const double uniform = nextUniform <= s.scanAngles ? twoPi * nextUniform / s.scanAngles
+                                                       : std::numeric_limits<double>::infinity();
+    if (nextExtra < extraCount && extra[static_cast<std::size_t>(nextExtra)] < uniform)
+      return extra[static_cast<std::size_t>(nextExtra++)];
+    ++nextUniform;
+    return uniform;
+  };
+  double hiAngle = nextAngle();
+  for (int k = 0; k + 1 < gridSize; ++k) {
+    double lo = hiAngle, hi = nextAngle();
+    hiAngle = hi;
     if (!(denom(lo) > 0 && denom(hi) > 0 && denom(0.5 * (lo + hi)) > 0)) continue;
     double glo = g(lo);
     const double ghi = g(hi);

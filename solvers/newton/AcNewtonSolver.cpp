@@ -5,23 +5,26 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <cstdio>
 
 namespace coulomb::solvers {
 
 namespace {
 
 // Proximal point (5.9) from r (best so far): subproblems FC(W + sigma I, q - sigma r_k).
+template <class ProximalWorkspace>
 void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const AcNewtonOptions& o,
                   const SolveContext& context, int budget, Eigen::VectorXd& r, SolverReport& report,
-                  NewtonWorkspace& workspace) {
+                  NewtonWorkspace& workspace, ProximalWorkspace& scratch) {
   double meanDiag = 0;
   for (int i = 0; i < p.size(); ++i) meanDiag += p.diagonal(i);
   meanDiag /= std::max(1, p.size());
   double sigma = o.proximalInitialShift * meanDiag;
-  Eigen::VectorXd u, best = r;
+  Eigen::VectorXd &u = scratch.u, &best = scratch.best, &x = scratch.x;
+  best = r;
   double e = p.residual(r, u), bestE = e;
-  PreparedProblem inner = p;
+  PreparedProblem& inner = scratch.inner;
+  inner = p;
   // One workspace (and linear solver) for all subproblems: W + sigma I keeps W's structure, so
   // the sparse pattern and its symbolic analysis carry over from one subproblem to the next.
   const double tol = context.tolerance();
@@ -31,14 +34,16 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     ++outer;
     inner.W = p.W;
     inner.W.addToDiagonal(sigma);
-    inner.q = p.q - sigma * r;
+    inner.q = p.q;
+    inner.q -= sigma * r;
     inner.qNorm = plainNorm(inner.q);
     SolverOptions innerOptions = context.options();
     innerOptions.tolerance = std::max(tol / 10, std::min(1e-2, e / 10));
     innerOptions.recordHistory = false;
     const SolveContext innerContext = context.withOptions(innerOptions);
-    SolverReport innerReport;
-    Eigen::VectorXd x = r;
+    SolverReport& innerReport = scratch.innerReport;
+    innerReport.reset();
+    x = r;
     runNonsmoothNewton(inner, f, o.newton, innerContext,
                        std::min(o.proximalInnerIterations, budget - used), x, innerReport,
                        &workspace);
@@ -59,9 +64,11 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
   }
   report.iterations += used;
   r = best;
-  std::ostringstream msg;
-  msg << "proximal point (5.9): " << outer << " subproblems, " << used << " Newton iterations";
-  report.note(msg.str());
+  // Formatted on the stack: a steady step allocates nothing (docs/architecture.md, memory).
+  char msg[96];
+  std::snprintf(msg, sizeof msg, "proximal point (5.9): %d subproblems, %d Newton iterations",
+                outer, used);
+  report.note(msg);
   report.status = bestE <= tol              ? SolverStatus::Converged
                   : report.timeLimitReached ? SolverStatus::MaxIterations
                   : used >= budget          ? SolverStatus::MaxIterations
@@ -88,7 +95,7 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
   }
   const AlartCurnierFunction function(options_.radius);
   if (options_.proximalFromStart) {
-    proximalLoop(p, function, options_, context, budget, r, report, workspace_);
+    proximalLoop(p, function, options_, context, budget, r, report, workspace_, proximal_);
     return;
   }
   runNonsmoothNewton(p, function, options_.newton, context, budget, r, report, &workspace_);
@@ -102,13 +109,14 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
   while (restarts < options_.stallRestarts && report.status == SolverStatus::Stalled &&
          report.iterations < budget && !report.timeLimitReached) {
     ++restarts;
-    Eigen::VectorXd u;
-    const Eigen::VectorXd before = r;
+    Eigen::VectorXd &u = proximal_.u, &before = proximal_.before;
+    before = r;
     const double beforeE = p.residual(r, u);
     SolverOptions gsOptions = context.options();
     gsOptions.maxIterations = std::min(options_.restartSweeps, budget - report.iterations);
     gsOptions.recordHistory = false;
-    SolverReport gsReport;
+    SolverReport& gsReport = proximal_.sweepReport;
+    gsReport.reset();
     sweeps_.solvePrepared(p, context.withOptions(gsOptions), r, gsReport);
     report.iterations += gsReport.iterations;
     restartSweeps += gsReport.iterations;
@@ -133,16 +141,19 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
                        &workspace_);
   }
   if (restarts > 0) {
-    std::ostringstream msg;
-    msg << "stall restart: " << restarts << " x bgs (" << restartSweeps << " sweeps), " << accepted
-        << " improved on Newton's best and restarted it";
-    report.note(msg.str());
+    char msg[128];
+    std::snprintf(msg, sizeof msg,
+                  "stall restart: %d x bgs (%d sweeps), %d improved on Newton's best and "
+                  "restarted it",
+                  restarts, restartSweeps, accepted);
+    report.note(msg);
   }
   // The regularization (5.8) is reported as a number (SolverReport::maxRegularization), not
   // formatted into the message: this runs on most solves of a step.
   if (options_.proximalOnStall && report.status == SolverStatus::Stalled &&
       report.iterations < budget && !report.timeLimitReached)
-    proximalLoop(p, function, options_, context, budget - report.iterations, r, report, workspace_);
+    proximalLoop(p, function, options_, context, budget - report.iterations, r, report, workspace_,
+                 proximal_);
 }
 
 }  // namespace coulomb::solvers

@@ -61,6 +61,13 @@ class AcNewtonSolver final : public ContactSolver {
   // Kept between solves for their storage (ContactSolver::solve: one instance, one thread).
   mutable NewtonWorkspace workspace_{options_.newton};
   mutable BgsSolver sweeps_;  // the hybrid start's and the stall restart's bgs sweeps
+  // The proximal loop's subproblem and the restart's and the loop's vectors.
+  struct ProximalWorkspace {
+    PreparedProblem inner;
+    Eigen::VectorXd u, best, x, before;
+    SolverReport innerReport, sweepReport;
+  };
+  mutable ProximalWorkspace proximal_;
 };
 
 }  // namespace coulomb::solvers

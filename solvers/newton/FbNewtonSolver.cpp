@@ -2,7 +2,7 @@
 
 #include <coulomb/solvers/newton/FischerBurmeisterFunction.hpp>
 
-#include <sstream>
+#include <cstdio>
 
 namespace coulomb::solvers {
 
@@ -13,10 +13,10 @@ void FbNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
                      context.maxIterations(options_.newton.defaultMaxIterations), r, report,
                      &workspace_);
   if (report.maxRegularization > 0 && p.maxDiagonal > 0) {
-    std::ostringstream msg;
-    msg << "J regularized by (5.8), sigma up to " << report.maxRegularization / p.maxDiagonal
-        << " max W_ii";
-    report.note(msg.str());
+    char msg[80];  // on the stack: a steady step allocates nothing
+    std::snprintf(msg, sizeof msg, "J regularized by (5.8), sigma up to %g max W_ii",
+                  report.maxRegularization / p.maxDiagonal);
+    report.note(msg);
   }
 }
 

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <vector>
 
 namespace coulomb::solvers {
@@ -308,10 +308,10 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
     if (h >= s.stallIterations &&
         bestE > (1.0 - s.stallDecrease) * bestHistory[h - s.stallIterations]) {
       report.status = SolverStatus::Stalled;
-      std::ostringstream msg;
-      msg << "best residual fell by less than " << s.stallDecrease * 100 << " % in "
-          << s.stallIterations << " iterations";
-      report.note(msg.str());
+      char msg[96];
+      std::snprintf(msg, sizeof msg, "best residual fell by less than %g %% in %d iterations",
+                    s.stallDecrease * 100, s.stallIterations);
+      report.note(msg);
       ++k;
       break;
     }
@@ -324,7 +324,11 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
   }
   report.iterations += k;
   if (report.status != SolverStatus::Converged) r = best;
-  if (steepest > 0) report.note(std::to_string(steepest) + " steepest-descent steps");
+  if (steepest > 0) {
+    char msg[48];
+    std::snprintf(msg, sizeof msg, "%d steepest-descent steps", steepest);
+    report.note(msg);
+  }
 }
 
 }  // namespace coulomb::solvers

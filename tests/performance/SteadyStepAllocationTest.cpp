@@ -102,5 +102,14 @@ TEST(SteadyStepAllocation, SmallScenesWithAutoAllocateNothing) {
     EXPECT_EQ(allocationsOfSteadySteps(scene, "auto", 100, 200), 0u) << scene;
 }
 
+// A quadruped standing on its feet (reduced coordinates): ABA's prediction, the proxies'
+// kinematics, the trees' joint-space rows and impulse-level ABA in the assembly and the impulses,
+// in kept per-tree storage; bgs forced, then auto (ac_newton with its stall restart and proximal
+// loop, fb_newton as a fallback: every solver's storage is warm after 300 steps).
+TEST(SteadyStepAllocation, StandingQuadrupedAllocatesNothing) {
+  EXPECT_EQ(allocationsOfSteadySteps("anymal_standing", "bgs!", 100, 100), 0u);
+  EXPECT_EQ(allocationsOfSteadySteps("anymal_standing", "auto", 300, 100), 0u);
+}
+
 }  // namespace
 }  // namespace coulomb
