@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,9 +67,20 @@ int main(int argc, char** argv) {
   std::printf("%-28s %9s %9s %9s %9s %9s %10s %10s %6s %9s  hash\n", "scene", "first_ms",
               "median_ms", "p99_ms", "max_ms", "mean_ms", "allocs", "bytes", "its", "residual");
   std::fflush(stdout);
+  int failed = 0;
   for (const std::string& name : names) {
-    const engine::io::Scene scene = scenes::loadBuiltinScene(name);
-    engine::World world = engine::io::buildWorld(scene);
+    std::optional<engine::io::Scene> loaded;
+    std::optional<engine::World> built;
+    try {  // an unknown scene or a broken file: its error, then the next scene
+      loaded = scenes::loadBuiltinScene(name);
+      built.emplace(engine::io::buildWorld(*loaded));
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "StepCost: %s\n", error.what());
+      ++failed;
+      continue;
+    }
+    const engine::io::Scene& scene = *loaded;
+    engine::World& world = *built;
     const double h = scene.settings.timeStep;
     std::vector<double> ms;
     double first = 0.0;
@@ -106,5 +118,5 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(world.stateHash()));
     std::fflush(stdout);
   }
-  return 0;
+  return failed == 0 ? 0 : 1;
 }

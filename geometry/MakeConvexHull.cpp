@@ -1,5 +1,7 @@
 #include <coulomb/geometry/MakeConvexHull.hpp>
 
+#include <coulomb/geometry/HullContacts.hpp>
+
 #include <Eigen/Geometry>
 
 #include <cstdio>
@@ -95,6 +97,7 @@ ConvexHull makeConvexHull(const std::vector<Eigen::Vector3d>& points) {
   if (status != 0 || hull.triangles.size() < 4)
     throw std::invalid_argument("convex_hull points are degenerate (coplanar or collinear): " +
                                 firstLine(message));
+  buildHullFaces(hull);
   return hull;
 }
 

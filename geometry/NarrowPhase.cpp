@@ -13,18 +13,19 @@ namespace {
 // Shape::index() order: Sphere, Box, Capsule, Cylinder, Plane, ConvexHull, TriangleMesh.
 enum Kind { kSphere = 0, kBox, kCapsule, kCylinder, kPlane, kHull, kMesh };
 
-std::vector<Eigen::Vector3d> worldVertices(const std::vector<Eigen::Vector3d>& local,
-                                           const Pose& pose) {
-  std::vector<Eigen::Vector3d> out;
-  out.reserve(local.size());
-  for (const Eigen::Vector3d& v : local) out.push_back(pose.apply(v));
+// `local` moved to the world, into `out` (the narrow phase's kept storage).
+std::span<const Eigen::Vector3d> worldVertices(const std::vector<Eigen::Vector3d>& local,
+                                               const Pose& pose,
+                                               std::vector<Eigen::Vector3d>& out) {
+  out.resize(local.size());
+  for (std::size_t i = 0; i < local.size(); ++i) out[i] = pose.apply(local[i]);
   return out;
 }
 
 // Closed-form routines, with `first` of a kind <= `second` (normal first -> second).
 // Returns 1 touching, 0 apart, -1 not handled here (use FCL).
 int closedForm(const Shape& first, const Pose& p1, const Shape& second, const Pose& p2,
-               double margin, PairContact& out) {
+               double margin, PairContact& out, NarrowPhaseScratch& scratch) {
   const int k1 = static_cast<int>(first.index()), k2 = static_cast<int>(second.index());
   // Plane against anything: plane first gives the plane -> object normal; flip when the plane
   // is the second shape.
@@ -50,11 +51,14 @@ int closedForm(const Shape& first, const Pose& p1, const Shape& second, const Po
       case kCylinder:
         return planeCylinder(plane, std::get<Cylinder>(other), pose, margin, out);
       case kHull:
-        return planePoints(plane, worldVertices(std::get<ConvexHull>(other).vertices, pose), 0.0,
-                           margin, out);
+        return planePoints(
+            plane, worldVertices(std::get<ConvexHull>(other).vertices, pose, scratch.worldVertices),
+            0.0, margin, out);
       case kMesh:
-        return planePoints(plane, worldVertices(std::get<TriangleMesh>(other).vertices, pose), 0.0,
-                           margin, out);
+        return planePoints(
+            plane,
+            worldVertices(std::get<TriangleMesh>(other).vertices, pose, scratch.worldVertices), 0.0,
+            margin, out);
       default:
         return false;  // plane-plane: both static, nothing to do
     }
@@ -86,10 +90,11 @@ int closedForm(const Shape& first, const Pose& p1, const Shape& second, const Po
       return result == BoxCapsuleResult::Touching ? 1 : 0;
     }
     case kBox * 8 + kHull:  // -1 (FCL) for hulls above kMaxClippedHullVertices
-      return boxHull(std::get<Box>(first), p1, std::get<ConvexHull>(second), p2, margin, out);
+      return boxHull(std::get<Box>(first), p1, std::get<ConvexHull>(second), p2, margin, out,
+                     scratch.hulls);
     case kHull * 8 + kHull:
       return hullHull(std::get<ConvexHull>(first), p1, std::get<ConvexHull>(second), p2, margin,
-                      out);
+                      out, scratch.hulls);
     case kCapsule * 8 + kCapsule:
       return capsuleCapsule(std::get<Capsule>(first), p1, std::get<Capsule>(second), p2, margin,
                             out);
@@ -106,8 +111,8 @@ bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collid
   out.points.clear();
   error.clear();
   const bool swap = a.shape->index() > b.shape->index();
-  const int handled = swap ? closedForm(*b.shape, poseB, *a.shape, poseA, margin, out)
-                           : closedForm(*a.shape, poseA, *b.shape, poseB, margin, out);
+  const int handled = swap ? closedForm(*b.shape, poseB, *a.shape, poseA, margin, out, scratch_)
+                           : closedForm(*a.shape, poseA, *b.shape, poseB, margin, out, scratch_);
   if (handled >= 0) {
     if (swap) out.normal = -out.normal;
     return handled == 1 && !out.points.empty();
@@ -175,21 +180,22 @@ void NarrowPhase::collide(std::span<const CandidatePair> pairs,
     }
     double margin = settings_.margin;
     if (pair.a < sweeps.size() && pair.b < sweeps.size()) margin += sweeps[pair.a] + sweeps[pair.b];
-    const bool touching =
-        contactPair(a, shapePoses[pair.a], b, shapePoses[pair.b], scene, scratch_, error, margin);
+    const bool touching = contactPair(a, shapePoses[pair.a], b, shapePoses[pair.b], scene,
+                                      pairScratch_, error, margin);
     if (!error.empty()) {
       failures.push_back({a.id, b.id, error});
       continue;
     }
     if (!touching) continue;
-    bool finite = scratch_.normal.allFinite();
-    for (const ContactCandidate& c : scratch_.points)
+    bool finite = pairScratch_.normal.allFinite();
+    for (const ContactCandidate& c : pairScratch_.points)
       finite = finite && c.position.allFinite() && std::isfinite(c.depth);
     if (!finite) {
       failures.push_back({a.id, b.id, "contact produced a non-finite value; pair skipped"});
       continue;
     }
-    out.push_back(finishManifold(scratch_, a, b, bodyPoses[a.body.index], bodyPoses[b.body.index]));
+    out.push_back(
+        finishManifold(pairScratch_, a, b, bodyPoses[a.body.index], bodyPoses[b.body.index]));
   }
 }
 

@@ -6,6 +6,7 @@
 #include <coulomb/geometry/Collider.hpp>
 #include <coulomb/geometry/ContactManifold.hpp>
 #include <coulomb/geometry/FclAdapter.hpp>
+#include <coulomb/geometry/HullContacts.hpp>
 #include <coulomb/geometry/ManifoldBuilder.hpp>
 
 #include <span>
@@ -25,6 +26,12 @@ struct CollisionFailure {
   ColliderId a;
   ColliderId b;
   std::string message;
+};
+
+/// The closed forms' storage, kept by a NarrowPhase between pairs (one pair at a time).
+struct NarrowPhaseScratch {
+  HullScratch hulls;
+  std::vector<Eigen::Vector3d> worldVertices;  // a hull's or mesh's against a plane
 };
 
 struct NarrowPhaseSettings {
@@ -67,7 +74,8 @@ class NarrowPhase {
 
   NarrowPhaseSettings settings_;
   FclFaultInjector injector_;
-  PairContact scratch_;
+  PairContact pairScratch_;
+  mutable NarrowPhaseScratch scratch_;
 };
 
 }  // namespace coulomb::geometry

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -35,9 +36,20 @@ struct Plane {
 };
 /// Convex hull of a point cloud. `vertices` are the input points; the hull's faces are computed
 /// when the shape is validated/used (outward-oriented triangles in `triangles`).
+/// A polygonal face of a hull (coplanar triangles merged), in the hull's frame.
+struct HullFace {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // outward, unit
+  double offset = 0.0;                                // normal . x = offset on the face plane
+  std::vector<int> loop;  // vertex indices, counter-clockwise seen from outside
+};
 struct ConvexHull {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3i> triangles;  // filled by makeConvexHull()
+  // The faces and the unique edges (i < j), filled by makeConvexHull() from the triangles: the
+  // features of the hull-hull manifolds (HullContacts.hpp), built once per shape instead of in
+  // every query.
+  std::vector<HullFace> faces;
+  std::vector<std::pair<int, int>> edges;
 };
 /// Closed, consistently oriented (outward normals, counter-clockwise) triangle mesh.
 struct TriangleMesh {

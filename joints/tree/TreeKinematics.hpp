@@ -48,7 +48,8 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> twistJacobian(const Articulation& artic
                                                        const Eigen::Vector3d& worldPoint);
 /// The same into `out` (6 x nv), reusing its storage.
 void twistJacobian(const Articulation& articulation, const TreeKinematics& kinematics, int link,
-                   const Eigen::Vector3d& worldPoint, Eigen::Matrix<double, 6, Eigen::Dynamic>& out);
+                   const Eigen::Vector3d& worldPoint,
+                   Eigen::Matrix<double, 6, Eigen::Dynamic>& out);
 
 /// The spatial force in link coordinates (torque about the link origin; force) of a world force
 /// applied at a world point on the link: the form the dynamics take as an external wrench.

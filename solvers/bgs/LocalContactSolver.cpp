@@ -144,9 +144,8 @@ void angleScan(const LocalContactData& d, const Eigen::Vector3d& qt, double mu,
       }
   }
   for (int i = 1; i < extraCount; ++i)  // insertion sort of at most four angles
-    for (int j = i; j > 0 && extra[static_cast<std::size_t>(j)] <
-                                 extra[static_cast<std::size_t>(j - 1)];
-         --j)
+    for (int j = i;
+         j > 0 && extra[static_cast<std::size_t>(j)] < extra[static_cast<std::size_t>(j - 1)]; --j)
       std::swap(extra[static_cast<std::size_t>(j)], extra[static_cast<std::size_t>(j - 1)]);
   const int gridSize = s.scanAngles + 1 + extraCount;
   int nextUniform = 0, nextExtra = 0;

@@ -54,9 +54,9 @@ TEST(FclAdapter, DegenerateShapesAreRejectedWithTheColliderNamed) {
     EXPECT_NE(std::string(e.what()).find("half_extents[1]"), std::string::npos) << e.what();
   }
   EXPECT_THROW(scene.upsert({8, 0}, make(Sphere{-1.0})), std::invalid_argument);
-  EXPECT_THROW(
-      scene.upsert({9, 0}, make(ConvexHull{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {}})),
-      std::invalid_argument);  // no faces computed
+  EXPECT_THROW(scene.upsert({9, 0}, make(ConvexHull{
+                                        {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {}, {}, {}})),
+               std::invalid_argument);  // no faces computed
   EXPECT_FALSE(scene.contains({7, 0}));
 }
 
