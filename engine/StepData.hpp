@@ -33,6 +33,10 @@ struct IslandWork {
   bool automaticPlan = true;                                // the policy's choice was Automatic
   solvers::SolvePlan plan;
   solvers::PlanOutcome outcome;
+  // This island's solvers (the plan's and the split impulse's), kept with the island slot: their
+  // workspaces stay sized to the island found in this slot step after step, so a steady step
+  // resizes none of them, and islands never share a solver (independent solves).
+  solvers::SolverInstances solvers;
   std::optional<solvers::SolverReport> penetration;  // the split impulse's pseudo-solve
   double penetrationSeconds = 0.0;
 

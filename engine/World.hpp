@@ -185,7 +185,6 @@ class World {
   ArticulationStage articulations_;
   Quarantine quarantine_;
   solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
-  solvers::SolverInstances solvers_;  // each registry solver created once, reused every step
   StepData step_;                     // this step's data; kept for its capacity
   StepReport report_;                 // the last step's report; kept for its capacity
   std::vector<std::string> warned_;   // keys of the StepReport::warnings already given

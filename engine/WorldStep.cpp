@@ -158,7 +158,7 @@ void World::solveIsland(IslandWork& island) {
       .choose(problem, {island.assembled.degreesOfFreedom}, choice, settings_.solve.options,
               island.plan);
   if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
-  solvers::solveWithFallback(problem, island.plan, registry_, solvers_, island.outcome);
+  solvers::solveWithFallback(problem, island.plan, registry_, island.solvers, island.outcome);
   warnIfUnsolved(island, choice);
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);
@@ -194,9 +194,9 @@ void World::applyImpulses(IslandWork& island) {
 }
 
 void World::correctPenetrations() {
-  const solvers::ContactSolver* solver =
-      solvers_.get(settings_.contact.penetration.solver, registry_);
   for (IslandWork& island : step_.work) {
+    const solvers::ContactSolver* solver =
+        island.solvers.get(settings_.contact.penetration.solver, registry_);
     if (solver == nullptr) break;  // validated at construction; a registry only grows
     const auto started = std::chrono::steady_clock::now();
     const joints::BlockRange contacts = island.blocks[kContactRows];

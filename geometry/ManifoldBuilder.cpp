@@ -1,7 +1,9 @@
 #include <coulomb/geometry/ManifoldBuilder.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 
 namespace coulomb::geometry {
 namespace {
@@ -58,11 +60,14 @@ void reduceToFour(const Eigen::Vector3d& normal, std::vector<ContactCandidate>& 
     const double e20 = orientation * (p0 - p2).cross(p - p2).dot(normal);
     return -std::min({e01, e12, e20});
   };
-  std::vector<std::size_t> chosen{i0, i1, i2};
+  // At most four chosen points, in fixed storage; written back over `points` (its capacity stays:
+  // the narrow phase reuses it for every pair).
+  std::array<std::size_t, 4> chosen{i0, i1, i2, none};
+  std::size_t chosenCount = 3;
   std::size_t i3 = none;
   double best3 = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (std::find(chosen.begin(), chosen.end(), i) != chosen.end()) continue;
+    if (std::find(chosen.begin(), chosen.begin() + 3, i) != chosen.begin() + 3) continue;
     const double s = outside(points[i].position);
     if (s <= 1e-14) continue;
     if (i3 == none || better(s, points[i].featureId, best3, points[i3].featureId)) {
@@ -70,15 +75,25 @@ void reduceToFour(const Eigen::Vector3d& normal, std::vector<ContactCandidate>& 
       best3 = s;
     }
   }
-  if (i3 != none) chosen.push_back(i3);
-  std::sort(chosen.begin(), chosen.end());
-  chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
-  std::vector<ContactCandidate> kept;
-  kept.reserve(chosen.size());
-  for (std::size_t i : chosen) kept.push_back(points[i]);
-  std::sort(kept.begin(), kept.end(),
+  if (i3 != none) chosen[chosenCount++] = i3;
+  // Insertion sorts of at most four entries (std::sort on part of a std::array trips GCC's
+  // array-bounds analysis).
+  const auto sortFirst = [](auto& entries, std::size_t count, auto less) {
+    for (std::size_t i = 1; i < count; ++i)
+      for (std::size_t j = i; j > 0 && less(entries[j], entries[j - 1]); --j)
+        std::swap(entries[j], entries[j - 1]);
+  };
+  sortFirst(chosen, chosenCount, std::less<>());
+  std::size_t unique = 0;
+  for (std::size_t k = 0; k < chosenCount; ++k)
+    if (unique == 0 || chosen[k] != chosen[unique - 1]) chosen[unique++] = chosen[k];
+  chosenCount = unique;
+  std::array<ContactCandidate, 4> kept;
+  for (std::size_t k = 0; k < chosenCount; ++k) kept[k] = points[chosen[k]];
+  sortFirst(kept, chosenCount,
             [](const auto& l, const auto& r) { return l.featureId < r.featureId; });
-  points = std::move(kept);
+  points.resize(chosenCount);
+  std::copy(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(chosenCount), points.begin());
 }
 
 void clipPolygon(ClipPolygon& polygon, const Eigen::Vector3d& axis, double limit,

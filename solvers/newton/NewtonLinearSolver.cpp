@@ -109,13 +109,29 @@ void NewtonLinearSolver::fillSparse(const BlockSparseMatrix& W, const std::vecto
 bool NewtonLinearSolver::solve(const BlockSparseMatrix& W, const std::vector<int>& offset,
                                const std::vector<NewtonBlockJacobian>& jac,
                                const std::vector<int>& kept, const std::vector<int>& index,
-                               double sigma, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+                               double sigma, const Eigen::VectorXd& rhsIn, Eigen::VectorXd& xOut) {
   const int m = static_cast<int>(kept.size());
+  if (rhsIn.size() < m) return false;
+  if (xOut.size() < m) xOut.resize(m);
+  const auto rhs = rhsIn.head(m);
+  auto x = xOut.head(m);
+  if (check_.size() < m) check_.resize(std::max<Eigen::Index>(m, W.size()));
+  auto check = check_.head(m);
   double err = 0;
   const double n = W.size();
   if (m <= denseThreshold_ || W.nonZeros() > maxSparseDensity_ * n * n) {
     ++stats_.denseSolves;
-    dense_.setZero(m, m);
+    if (dense_.rows() < m) {  // sized to the problem (up to the threshold): |R| varies below it
+      const Eigen::Index capacity =
+          std::max<Eigen::Index>(m, std::min<Eigen::Index>(W.size(), denseThreshold_));
+      dense_.resize(capacity, capacity);
+      denseLu_.resize(capacity, capacity);
+      transpositions_.resize(static_cast<std::size_t>(capacity));
+    }
+    using Block = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+    Block J(dense_.data(), m, m, Eigen::OuterStride<>(dense_.rows()));
+    Block lu(denseLu_.data(), m, m, Eigen::OuterStride<>(denseLu_.rows()));
+    J.setZero();
     for (int b = 0; b < W.blockCount(); ++b) {
       const int o = offset[b], s = W.blockSize(b);
       const Eigen::Matrix3d& A = jac[b].A;
@@ -132,17 +148,25 @@ bool NewtonLinearSolver::solve(const BlockSparseMatrix& W, const std::vector<int
             double val = 0;
             for (int t = 0; t < s; ++t) val += A(a, t) * v[sj * t + c];
             if (j == b) val += sigma * A(a, c) + B(a, c);
-            dense_(row, col) += val;
+            J(row, col) += val;
           }
         }
       }
     }
-    denseLu_.compute(dense_);  // reuses its storage while m is unchanged
-    x = denseLu_.solve(rhs);
+    // P J = L U in place (the algorithm of Eigen's PartialPivLU, on the leading block).
+    lu = J;
+    int transpositionCount = 0;
+    if (m > 0)
+      Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>::blocked_lu(
+          m, m, lu.data(), lu.outerStride(), transpositions_.data(), transpositionCount);
+    x = rhs;
+    for (int i = 0; i < m; ++i) std::swap(x[i], x[transpositions_[static_cast<std::size_t>(i)]]);
+    lu.triangularView<Eigen::UnitLower>().solveInPlace(x);
+    lu.triangularView<Eigen::Upper>().solveInPlace(x);
     if (!x.allFinite()) return false;
-    check_.noalias() = dense_ * x;
-    check_ -= rhs;
-    err = check_.norm();
+    check.noalias() = J * x;
+    check -= rhs;
+    err = check.norm();
   } else {
     stats_.lastReusedPattern = samePattern(W, kept);
     if (!stats_.lastReusedPattern) buildPattern(W, offset, kept, index);
@@ -152,9 +176,9 @@ bool NewtonLinearSolver::solve(const BlockSparseMatrix& W, const std::vector<int
     if (lu_->info() != Eigen::Success) return false;
     x = lu_->solve(rhs);
     if (lu_->info() != Eigen::Success || !x.allFinite()) return false;
-    check_.noalias() = J_ * x;
-    check_ -= rhs;
-    err = check_.norm();
+    check.noalias() = J_ * x;
+    check -= rhs;
+    err = check.norm();
   }
   return err <= 1e-8 * rhs.norm();
 }

@@ -47,8 +47,10 @@ class NewtonLinearSolver {
 
   // Solves J_RR x = rhs. `kept` lists the rows of R in increasing order, `index[i]` is the position
   // of row i in `kept` or -1; `offset` the block offsets of W (blockCount + 1 entries), `jac` the
-  // blocks A_b, B_b. False when the factorization fails or the solution is not accurate
-  // (||J_RR x - rhs|| > 1e-8 ||rhs||).
+  // blocks A_b, B_b. rhs: its first |R| entries are the right-hand side; x: resized to |R| when
+  // shorter, else only its first |R| entries are written (a caller that keeps rhs and x at the
+  // problem's size never reallocates them). False when the factorization fails or the solution
+  // is not accurate (||J_RR x - rhs|| > 1e-8 ||rhs||).
   bool solve(const BlockSparseMatrix& W, const std::vector<int>& offset,
              const std::vector<NewtonBlockJacobian>& jac, const std::vector<int>& kept,
              const std::vector<int>& index, double sigma, const Eigen::VectorXd& rhs,
@@ -77,8 +79,11 @@ class NewtonLinearSolver {
   using SparseLu = Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>;
   std::unique_ptr<SparseLu> lu_;
   bool analyzed_ = false;
-  Eigen::MatrixXd dense_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> denseLu_;
+  // Dense path: J_RR and its LU factors in the leading m x m block of storage sized to the
+  // largest m met (Eigen's blocked partial-pivoting LU run in place, with the leading dimension
+  // of the storage), the row transpositions, so that a new |R| reallocates nothing.
+  Eigen::MatrixXd dense_, denseLu_;
+  std::vector<int> transpositions_;
   Eigen::VectorXd check_;  // J_RR x - rhs
 };
 

@@ -140,11 +140,12 @@ class NewtonSystem {
     wd = sigma * d;
     p_.W.multiplyAdd(d, wd);
     applyAB(wd, d, jd);
-    Eigen::VectorXd& rhs = work_.rhs;
-    rhs.resize(m);
+    Eigen::VectorXd& rhs = work_.rhs;  // kept at the problem's size: |R| varies below it
+    if (rhs.size() != n) rhs.resize(n);
+    Eigen::VectorXd& x = work_.x;
+    if (x.size() != n) x.resize(n);
     for (int k = 0; k < m; ++k) rhs[k] = -phi[kept[k]] - jd[kept[k]];
     // J_RR = (A (W + sigma I) + B)_RR: dense or sparse LU (NewtonLinearSolver).
-    Eigen::VectorXd& x = work_.x;
     if (!linear_.solve(p_.W, p_.offset, jac_, kept, index, sigma, rhs, x)) return false;
     for (int k = 0; k < m; ++k) d[kept[k]] = x[k];
     return true;

@@ -76,9 +76,17 @@ TEST(SteadyStepAllocation, RestingPyramidAllocatesNothing) {
   EXPECT_EQ(allocationsOfSteadySteps("pyramid_10", "pgs!", 50, 200), 0u);
 }
 
-// A 10-box tower: a dense-then-sparse block W of a narrow island, with bgs.
+// A 10-box tower: a dense-then-sparse block W of a narrow island, with bgs, then auto (ac_newton:
+// the dense LU in place in storage sized to the island while the kept rows vary).
 TEST(SteadyStepAllocation, TowerAllocatesNothing) {
   EXPECT_EQ(allocationsOfSteadySteps("box_stack_10", "bgs!", 50, 200), 0u);
+  EXPECT_EQ(allocationsOfSteadySteps("box_stack_10", "auto", 100, 200), 0u);
+}
+
+// A masonry arch of convex hulls: hull-hull manifolds from the hulls' own faces (no per-query
+// face building), in the narrow phase's kept scratch.
+TEST(SteadyStepAllocation, HullArchAllocatesNothing) {
+  EXPECT_EQ(allocationsOfSteadySteps("masonry_arch_mu0_6", "auto", 50, 200), 0u);
 }
 
 // One box held by friction on an incline: a dense one-contact island (bgs forced, then auto:
