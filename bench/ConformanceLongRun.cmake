@@ -1,4 +1,4 @@
-# The conformance cases at their full SCENES.md horizons (issue 8 item 5: 10 000 steps of the
+# The conformance cases at their full docs/scene-specifications.md horizons (issue 8 item 5: 10 000 steps of the
 # towers, pyramids and the 1000-box pile), too long for CI: `ConformanceLongRun [--solvers a,b]
 # [--scale X] CASE...` prints one line per case and solver (docs/conformance.md has the figures).
 if(TARGET coulomb_samples)

@@ -1,5 +1,6 @@
 #include <coulomb/engine/BodyBuilder.hpp>
 #include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/geometry/HullContacts.hpp>
 #include <coulomb/geometry/MakeConvexHull.hpp>
 #include <coulomb/geometry/MassProperties.hpp>
 
@@ -89,12 +90,15 @@ ResolvedBody resolveBody(const BodyDesc& desc, const WorldSettings& settings) {
       fail(where + ": a plane is infinite; only a static body may carry it (this body is " +
            geometry::motionTypeName(desc.motionType) + ")");
     auto shape = std::make_shared<geometry::Shape>(s.shape);
-    if (auto* hull = std::get_if<geometry::ConvexHull>(shape.get());
-        hull && hull->triangles.empty()) {
-      try {
-        *hull = geometry::makeConvexHull(hull->vertices);
-      } catch (const std::invalid_argument& e) {
-        fail(where + " (convex_hull): " + e.what());
+    if (auto* hull = std::get_if<geometry::ConvexHull>(shape.get()); hull) {
+      if (hull->triangles.empty()) {
+        try {
+          *hull = geometry::makeConvexHull(hull->vertices);
+        } catch (const std::invalid_argument& e) {
+          fail(where + " (convex_hull): " + e.what());
+        }
+      } else if (hull->faces.empty()) {  // triangles given without faces: the queries need both
+        geometry::buildHullFaces(*hull);
       }
     }
     const geometry::Pose local = normalised(s.localPose);

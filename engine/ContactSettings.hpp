@@ -33,7 +33,7 @@ struct PenetrationSettings {
 enum class ImpactLaw {
   /// Default: Newton's law u_N+ >= -e u_N- on every impacting point in the one velocity problem
   /// of the step (survey sec. 2.1.6). A striker hitting a row of touching balls pushes them all:
-  /// Newton's cradle gives (-0.6, 0.4, 0.4, 0.4, 0.4) (SCENES.md A7).
+  /// Newton's cradle gives (-0.6, 0.4, 0.4, 0.4, 0.4) (docs/scene-specifications.md A7).
   Simultaneous,
   /// Impacts resolved pair by pair, each contact an impact of its two bodies alone, sweeping
   /// the island until no contact impacts (the propagation model of Bender et al. 2014, sec.
@@ -50,9 +50,10 @@ struct ContactSettings {
   /// Simultaneous (default: one velocity problem per island, no extra pass) or Propagating.
   ImpactLaw impactLaw = ImpactLaw::Simultaneous;
   /// [m] Gaps up to this count as touching: bodies placed exactly touching are often ~1e-17 m
-  /// apart after rounding (0.1 * 3 = 0.30000000000000004, SCENES.md A7), and such a point must
-  /// take restitution like a touching one, not be treated as a speculative gap to close. Default
-  /// 1e-9 m: a million times the rounding of coordinates of order 1 m, far below any visible gap.
+  /// apart after rounding (0.1 * 3 = 0.30000000000000004, docs/scene-specifications.md A7), and
+  /// such a point must take restitution like a touching one, not be treated as a speculative gap to
+  /// close. Default 1e-9 m: a million times the rounding of coordinates of order 1 m, far below any
+  /// visible gap.
   double touchingTolerance = 1e-9;
   /// Propagating law: most sweeps over the island's contacts; contacts still impacting after
   /// them are left to the velocity problem (Newton's law there). Default 100: a chain of n
@@ -70,7 +71,7 @@ struct ContactSettings {
   /// surface follows the chords of a polygon inscribed in it instead of losing (1/2) m v^2
   /// sin^2(v h / R) per step (pi m v^3 h / R per turn). Gravity's h g along the normal and every
   /// new contact stay inelastic. Default off (docs/tuning.md says why); the double loop
-  /// (SCENES.md B11) turns it on.
+  /// (docs/scene-specifications.md B11) turns it on.
   bool elasticTurning = false;
   PenetrationSettings penetration;
 };

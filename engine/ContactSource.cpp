@@ -106,9 +106,10 @@ void ContactSource::emitRows(std::span<const std::int32_t> items, const RowConte
       const bool impact = manifold.restitution > 0.0 && approach < -settings.restitutionThreshold;
       const double gap = -point.depth;
       double bias = impact ? manifold.restitution * approach : 0.0;
-      // Speculative gap (wider than the touching tolerance, which is rounding: SCENES.md A7):
-      // u_N >= -gap/h lets the bodies close the gap within the step and no more, and a point
-      // that does not close gets no impulse. A point that v* closes within the step
+      // Speculative gap (wider than the touching tolerance, which is rounding:
+      // docs/scene-specifications.md A7): u_N >= -gap/h lets the bodies close the gap within the
+      // step and no more, and a point that does not close gets no impulse. A point that v* closes
+      // within the step
       // (-approach h > gap) is an impact at the moment it closes: Newton's law as for a touching
       // point, u_N+ >= -e u_N- (survey, sec. 5.4), not stopped at the surface to bounce from
       // what is left of its speed in the next step (docs/tuning.md, "Impact laws").

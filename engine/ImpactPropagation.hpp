@@ -4,7 +4,8 @@
 // bodies alone (Newton's law on the pair's points), sweeping the island in contact order until no
 // contact impacts. This is the propagation model of Bender, Erleben, Trinkle 2014 (sec. 4.2.2,
 // [BETC12]): a collision travels through touching bodies one contact at a time, so equal balls
-// exchange velocities and Newton's cradle sends the last ball off alone (SCENES.md A7).
+// exchange velocities and Newton's cradle sends the last ball off alone
+// (docs/scene-specifications.md A7).
 //
 // What takes part: a manifold impacts when one of its points approaches faster than the
 // restitution threshold while touching (gap <= touchingTolerance) or while its speculative gap

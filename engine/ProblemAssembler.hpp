@@ -1,6 +1,6 @@
 #pragma once
-// Rows -> solver problem: the one translation between joints/ and solvers/ (ARCHITECTURE.md 1).
-// W = J M^-1 J^T assembled block by block over the bodies the rows share, q = J v* + bias.
+// Rows -> solver problem: the one translation between joints/ and solvers/ (docs/architecture.md
+// 1). W = J M^-1 J^T assembled block by block over the bodies the rows share, q = J v* + bias.
 // Dense for small islands, 3x3-block sparse for large ones. Static/kinematic bodies and the world
 // carry no unknowns (their inverse mass is 0), so their Jacobian halves never enter W.
 #include <coulomb/geometry/BodyState.hpp>

@@ -19,10 +19,10 @@ namespace coulomb::engine {
 /// (transferSettings), or a restored World keeps its own value of it.
 struct WorldSettings {
   /// [m/s^2] Uniform gravitational acceleration. Default: standard gravity along -z (z up, as in
-  /// URDF/ROS and the scenes of SCENES.md).
+  /// URDF/ROS and the scenes of docs/scene-specifications.md).
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};
   /// [s] Step used by World::step() without an argument. Default 0.01: the rate at which the
-  /// design's peer engines are compared (ARCHITECTURE.md section 7).
+  /// design's peer engines are compared (docs/architecture.md section 7).
   double timeStep = 0.01;
   /// [kg/m^3] Density for bodies that give neither a density nor an explicit mass. Default: water.
   double defaultDensity = 1000.0;

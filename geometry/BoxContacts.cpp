@@ -16,11 +16,11 @@ constexpr double kEdgeTolerance = 1e-4;
 // An edge-edge axis must also beat the best face axis by this fraction of the smallest half
 // extent of the two boxes. Two boxes stacked face on face with a small relative tilt and yaw have
 // edge-cross axes within a few degrees of the face normal whose separation exceeds the face's by
-// 1e-4 to 1e-3 m (0.2 m boxes of the 1000-box pile, SCENES.md B1): with the absolute 1e-4 m alone
-// such a stack got a one-point edge manifold, the upper box pivoted about it and sank into the
-// lower one (box 247 into box 147: 2.8 cm at step 27, 10 cm at step 39; 0.23 m overlaps by step
-// 83). Within the tolerance the face is clipped (up to 4 points); its separation differs from
-// the edge axis's by less than the tolerance.
+// 1e-4 to 1e-3 m (0.2 m boxes of the 1000-box pile, docs/scene-specifications.md B1): with the
+// absolute 1e-4 m alone such a stack got a one-point edge manifold, the upper box pivoted about it
+// and sank into the lower one (box 247 into box 147: 2.8 cm at step 27, 10 cm at step 39; 0.23 m
+// overlaps by step 83). Within the tolerance the face is clipped (up to 4 points); its separation
+// differs from the edge axis's by less than the tolerance.
 constexpr double kEdgeRelativeTolerance = 0.025;
 constexpr double kClipSlop = 2e-3;  // relative to the reference face's smaller half-extent
 

@@ -1,6 +1,6 @@
 #pragma once
 // Candidate pairs for the narrow phase: FCL's dynamic AABB tree (through FclScene, updated
-// incrementally), planes tested separately (they crash the tree, FCL-NOTES.md 4.8), then the
+// incrementally), planes tested separately (they crash the tree, docs/fcl-notes.md 4.8), then the
 // filters: no pair within one body, category/mask bits, and a caller's predicate (e.g. skip
 // bodies joined by a joint, or static-static pairs). Output sorted by (id of A, id of B).
 #include <coulomb/geometry/Collider.hpp>

@@ -5,8 +5,8 @@
 // that end. Those end-cap points are ghosts: the end cap lies inside the neighbour capsule, so the
 // point adds no constraint the neighbour's contact does not already give, and its linearised gap
 // (u_N >= -gap/h along the tilted normal) stops a ball rolling along the chain as if it hit a step
-// (measured on SCENES.md B11 double_loop: the ball lost a third of its speed and lifted off the
-// rails). This pass drops them.
+// (measured on docs/scene-specifications.md B11 double_loop: the ball lost a third of its speed and
+// lifted off the rails). This pass drops them.
 #include <coulomb/geometry/Collider.hpp>
 #include <coulomb/geometry/ContactManifold.hpp>
 #include <coulomb/geometry/Pose.hpp>

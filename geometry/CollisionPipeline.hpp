@@ -30,7 +30,7 @@ struct CollisionSettings {
   double speculativeSweep = 1.0;
   /// [m] Distance within which a point whose feature id changed still inherits the old impulses.
   double matchDistance = 0.002;
-  /// Contacts FCL may report per mesh pair before it stops (it truncates, FCL-NOTES.md 4.4).
+  /// Contacts FCL may report per mesh pair before it stops (it truncates, docs/fcl-notes.md 4.4).
   int maxMeshContacts = 64;
 };
 

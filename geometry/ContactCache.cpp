@@ -13,7 +13,8 @@ bool byColliders(const ContactManifold& l, const ContactManifold& r) {
 
 // The old tangent impulse as a world vector, in the fresh manifold's tangent frame: the frame is a
 // function of the normal (makeTangentFrame) that turns with it and flips where n_z changes sign,
-// and a warm start in a stale frame pushes the wrong way (SOLVERS.md section 11 pitfall 8).
+// and a warm start in a stale frame pushes the wrong way (docs/solver-derivations.md section 11
+// pitfall 8).
 Eigen::Vector2d rotatedTangentImpulse(const ContactManifold& old, const ContactPoint& from,
                                       const ContactManifold& fresh) {
   const Eigen::Vector3d world =

@@ -14,7 +14,7 @@ namespace coulomb::geometry {
 
 struct ContactCacheSettings {
   double matchDistance = 0.002;   // [m] proximity match for points whose feature id changed
-  double normalAgreement = 0.95;  // min n_old . n_new to carry impulses (FCL-NOTES.md 9)
+  double normalAgreement = 0.95;  // min n_old . n_new to carry impulses (docs/fcl-notes.md 9)
 };
 
 class ContactCache {

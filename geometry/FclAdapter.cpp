@@ -1,5 +1,5 @@
-// The only translation unit that includes FCL (ARCHITECTURE.md section 1). Facts relied on are
-// in FCL-NOTES.md: GST_LIBCCD always (section 3), meshes first with the normal re-oriented
+// The only translation unit that includes FCL (docs/architecture.md section 1). Facts relied on are
+// in docs/fcl-notes.md: GST_LIBCCD always (section 3), meshes first with the normal re-oriented
 // (4.1), abs() of sphere-triangle depth (4.2), zero normals dropped (4.3), halfspaces kept out of
 // the tree (4.8), own tight + fattened AABBs (4.9, 6), every call wrapped (4.12).
 #include <coulomb/geometry/FclAdapter.hpp>
@@ -89,7 +89,7 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Shape& shape, const 
 
 // FCL's CollisionObject keeps its world AABB in a protected member; the tree reads it from there.
 // Setting it directly lets Coulomb give rotated primitives a tight box (FCL's own is the
-// bounding-sphere cube, FCL-NOTES.md 4.9) and keep a fattened one while a body rests.
+// bounding-sphere cube, docs/fcl-notes.md 4.9) and keep a fattened one while a body rests.
 class TreeObject : public fcl::CollisionObjectd {
  public:
   using fcl::CollisionObjectd::CollisionObjectd;
@@ -150,7 +150,7 @@ struct FclScene::Impl {
     return *it->second;  // the map holds unique_ptrs: the entry itself is not const
   }
 
-  // The tree re-inserts a leaf whenever its box changes at all (FCL-NOTES.md 6), so each leaf
+  // The tree re-inserts a leaf whenever its box changes at all (docs/fcl-notes.md 6), so each leaf
   // holds a box fattened by `slack` beyond the margin, replaced only when the shape leaves it
   // (Box2D's b2_aabbMargin idea). A resting body then costs no tree work.
   void place(Entry& entry, double sweep) {
@@ -277,7 +277,7 @@ FclCollideResult FclScene::collide(ColliderId a, ColliderId b, int maxContacts,
   FclCollideResult result;
   const Impl::Entry& ea = impl_->at(a);
   const Impl::Entry& eb = impl_->at(b);
-  const bool swap = eb.isMesh && !ea.isMesh;  // FCL wants the mesh first (FCL-NOTES.md 4.1)
+  const bool swap = eb.isMesh && !ea.isMesh;  // FCL wants the mesh first (docs/fcl-notes.md 4.1)
   const Impl::Entry& first = swap ? eb : ea;
   const Impl::Entry& second = swap ? ea : eb;
   try {

@@ -2,7 +2,7 @@
 // The one door to FCL (the only file pair that sees FCL headers is FclAdapter.cpp). It owns one
 // FCL geometry + CollisionObject per collider and FCL's dynamic AABB tree, and answers guarded
 // queries: any exception or non-finite output from FCL/libccd comes back as an error string for
-// that pair, never as a throw (FCL-NOTES.md section 9, "Ordering and guards").
+// that pair, never as a throw (docs/fcl-notes.md section 9, "Ordering and guards").
 #include <coulomb/geometry/Ids.hpp>
 #include <coulomb/geometry/Pose.hpp>
 #include <coulomb/geometry/Shape.hpp>
@@ -58,7 +58,7 @@ class FclScene {
 
   /// Creates (or rebuilds, when the shape pointer changed) the FCL geometry of a collider.
   /// Throws std::invalid_argument naming the collider when the shape is degenerate.
-  /// Planes get an fcl::Halfspace but are kept out of the tree (FCL-NOTES.md section 4.8).
+  /// Planes get an fcl::Halfspace but are kept out of the tree (docs/fcl-notes.md section 4.8).
   void upsert(ColliderId id, const std::shared_ptr<const Shape>& shape);
   void erase(ColliderId id);
   [[nodiscard]] bool contains(ColliderId id) const;

@@ -1,7 +1,7 @@
 #pragma once
 // Typed handles with a generation counter: an id names a slot and the generation of the object
 // that lived there when the id was handed out, so a stale id (object removed, slot reused) is
-// detected instead of silently addressing another object (ARCHITECTURE.md golden rule 9).
+// detected instead of silently addressing another object (docs/architecture.md golden rule 9).
 #include <compare>
 #include <cstdint>
 #include <functional>

@@ -1,8 +1,8 @@
 #pragma once
 // From the raw points of one touching pair to a ContactManifold: at most 4 points chosen to span
-// the contact area (area-maximising reduction, FCL-NOTES.md section 9), a deterministic tangent
-// frame, body-frame anchors and the combined material. The shape-pair routines that produce the
-// raw points live in PrimitiveContacts / BoxContacts (closed forms) and NarrowPhase (FCL).
+// the contact area (area-maximising reduction, docs/fcl-notes.md section 9), a deterministic
+// tangent frame, body-frame anchors and the combined material. The shape-pair routines that produce
+// the raw points live in PrimitiveContacts / BoxContacts (closed forms) and NarrowPhase (FCL).
 #include <coulomb/geometry/Collider.hpp>
 #include <coulomb/geometry/ContactManifold.hpp>
 

@@ -119,7 +119,7 @@ bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collid
   }
   out.points.clear();
   if (a.shape->index() == kMesh && b.shape->index() == kMesh) {
-    error = "mesh-mesh contact is not supported (FCL-NOTES.md 4.5): use convex pieces";
+    error = "mesh-mesh contact is not supported (docs/fcl-notes.md 4.5): use convex pieces";
     return false;
   }
   return viaFcl(a, b, scene, margin, out, error);

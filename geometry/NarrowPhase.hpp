@@ -36,7 +36,7 @@ struct NarrowPhaseScratch {
 
 struct NarrowPhaseSettings {
   double margin = 0.005;     // [m] gaps below this still give (negative-depth) points
-  int maxMeshContacts = 64;  // FCL stops mesh traversal at this count (FCL-NOTES.md 4.4)
+  int maxMeshContacts = 64;  // FCL stops mesh traversal at this count (docs/fcl-notes.md 4.4)
 };
 
 class NarrowPhase {

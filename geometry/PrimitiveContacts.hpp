@@ -1,7 +1,7 @@
 #pragma once
 // Closed-form contacts for spheres, capsules, cylinders and planes (FCL is inexact or returns one
-// point for these: FCL-NOTES.md sections 2, 3 and 9). Each routine writes a normal pointing from
-// its first shape to its second, appends candidates whose gap is below `margin`, and returns
+// point for these: docs/fcl-notes.md sections 2, 3 and 9). Each routine writes a normal pointing
+// from its first shape to its second, appends candidates whose gap is below `margin`, and returns
 // whether it appended any. Shapes are given with their world pose.
 #include <coulomb/geometry/ManifoldBuilder.hpp>
 #include <coulomb/geometry/Pose.hpp>

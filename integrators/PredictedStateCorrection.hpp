@@ -8,7 +8,8 @@
 //   3. solve A p = -d/h with A = J M^-1 J^T (J at the start of the step, factored once:
 //      sparse LDL^T (solvers/direct/SparseLdlt, analysed once per joint structure), plus a tiny
 //      compliance eps I with eps = 1e-10 max diag(A) so redundant rows, e.g. a closed loop of
-//      hinges, stay solvable; SOLVERS.md sec. 10) and apply dv = M^-1 J^T p to the velocities;
+//      hinges, stay solvable; docs/solver-derivations.md sec. 10) and apply dv = M^-1 J^T p to the
+//      velocities;
 //   4. repeat until every |C(t+h)| <= tolerance or the iteration cap;
 //   5. if a pass stalls (|C| not halved: SHAKE has no root near, e.g. a heavy load on light
 //      links), the remaining passes project along the rows at the predicted state instead.

@@ -45,8 +45,9 @@ struct PredictedStateSettings {
 };
 
 struct Stabilization {
-  /// Default PredictedState: it keeps chains closed without adding or losing energy (SCENES.md
-  /// A6: maximal-coordinate peers lose 57-96 % of a chain's energy with Baumgarte-style bias).
+  /// Default PredictedState: it keeps chains closed without adding or losing energy
+  /// (docs/scene-specifications.md A6: maximal-coordinate peers lose 57-96 % of a chain's energy
+  /// with Baumgarte-style bias).
   StabilizationMethod method = StabilizationMethod::PredictedState;
   BaumgarteSettings baumgarte;
   PredictedStateSettings predictedState;

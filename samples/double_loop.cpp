@@ -1,7 +1,7 @@
-// Sample: the ball in the double loop (SCENES.md B11; Alart-Curnier 2011 figure 9). For each
-// friction coefficient it prints how far along the track the ball gets, the share of steps rolling
-// versus sliding, the ac_newton iterations per step to ||f_AC||^2 < 1e-20 (mean, max) and the
-// world's own solver figures.
+// Sample: the ball in the double loop (docs/scene-specifications.md B11; Alart-Curnier 2011 figure
+// 9). For each friction coefficient it prints how far along the track the ball gets, the share of
+// steps rolling versus sliding, the ac_newton iterations per step to ||f_AC||^2 < 1e-20 (mean, max)
+// and the world's own solver figures.
 //   sample_double_loop [MU ...] [--steps N] [--solver NAME]   (default: 0.1 0.3 0.6 1.0, 500,
 //   ac_newton)
 #include <coulomb/engine/CoulombError.hpp>
@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
   }
   if (mus.empty()) mus = {0.1, 0.3, 0.6, 1.0};
   std::printf(
-      "double_loop (SCENES.md B11): ball spinning at 180 rad/s on two rails of 1720 "
+      "double_loop (docs/scene-specifications.md B11): ball spinning at 180 rad/s on two rails of "
+      "1720 "
       "capsules; track end at s = 15.101 m, loop tops at 3.275 and 9.826 m\n");
   try {
     for (const double mu : mus) {

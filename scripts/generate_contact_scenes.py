@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the contact scenes of issue 7 into samples/scenes/*.json, built exactly as
-../shared/design/SCENES.md specifies them (section 0 rules, A2, A3, A4, B1): geometry, masses,
+docs/scene-specifications.md specifies them (section 0 rules, A2, A3, A4, B1): geometry, masses,
 explicit principal inertias, one (mu, e) per scene, dt, duration and body order. Positions are
 computed in double precision with the same expressions as the peer harness (peers/engines/bench.cpp)
 and written with repr(), which round-trips exactly, so bodies placed exactly touching stay so.
@@ -18,12 +18,12 @@ G = 9.81
 
 
 def box_inertia(h, m):
-    """SCENES.md 'box(h, m)': cube of half side h, I = m 8 h^2 / 12 on every axis."""
+    """docs/scene-specifications.md 'box(h, m)': cube of half side h, I = m 8 h^2 / 12 on every axis."""
     return m * 8.0 * h * h / 12.0
 
 
 def rot_y(angle):
-    """Quaternion [w, x, y, z] of R_y(angle) (SCENES.md section 0)."""
+    """Quaternion [w, x, y, z] of R_y(angle) (docs/scene-specifications.md section 0)."""
     return [math.cos(angle / 2), 0.0, math.sin(angle / 2), 0.0]
 
 
@@ -71,12 +71,12 @@ def box_on_plane():
 
 
 def box_incline(variant):
-    """SCENES.md A2."""
+    """docs/scene-specifications.md A2."""
     theta = math.radians(20.0)
     if variant == "C":
         a = math.radians(22.5)
         return scene("box_incline_C_flat_22_5deg",
-                     "SCENES.md A2 C_flat_22.5deg: a box pushed at 22.5 deg to its axes on flat "
+                     "docs/scene-specifications.md A2 C_flat_22.5deg: a box pushed at 22.5 deg to its axes on flat "
                      "ground (mu 0.5) slides straight and stops after 0.097 m (dt 0.01).",
                      0.01, 1.0, 0.5, 0.0,
                      [ground(), box("box", [0.0, 0.0, 0.1], 0.1, 1.0,
@@ -85,29 +85,29 @@ def box_incline(variant):
     p0 = [0.1 * c for c in n]
     if variant == "A":
         mu, name, duration = math.tan(theta) + 0.05, "box_incline_A_stick", 5.0
-        text = ("SCENES.md A2 A_stick: a box on a 20 deg incline with mu = tan 20 + 0.05 "
+        text = ("docs/scene-specifications.md A2 A_stick: a box on a 20 deg incline with mu = tan 20 + 0.05 "
                 "sticks (no creep).")
     else:
         mu, name, duration = math.tan(theta) - 0.1, "box_incline_B_slide", 2.0
-        text = ("SCENES.md A2 B_slide: a box on a 20 deg incline with mu = tan 20 - 0.1 slides "
+        text = ("docs/scene-specifications.md A2 B_slide: a box on a 20 deg incline with mu = tan 20 - 0.1 slides "
                 "at a = g (sin 20 - mu cos 20) = 0.9218385 m/s^2.")
     return scene(name, text, 0.01, duration, mu, 0.0,
                  [ground(rot_y(theta)), box("box", p0, 0.1, 1.0, orientation=rot_y(theta))])
 
 
 def box_stack(n):
-    """SCENES.md A3: N boxes h 0.1, 0.008 kg, box i at (0, 0, 0.1 + 0.2 i), touching exactly."""
+    """docs/scene-specifications.md A3: N boxes h 0.1, 0.008 kg, box i at (0, 0, 0.1 + 0.2 i), touching exactly."""
     bodies = [ground()]
     for i in range(n):
         bodies.append(box(f"box{i}", [0.0, 0.0, 0.1 + 0.2 * i], 0.1, 0.008))
     return scene(f"box_stack_{n}",
-                 f"SCENES.md A3 box_stack N={n}: a tower of {n} boxes (0.2 m, 8 g, mu 0.6) that "
+                 f"docs/scene-specifications.md A3 box_stack N={n}: a tower of {n} boxes (0.2 m, 8 g, mu 0.6) that "
                  "must stand still without sleep.",
                  0.01, 10.0, 0.6, 0.0, bodies)
 
 
 def pyramid(base):
-    """SCENES.md A4: row k holds base - k boxes at ((j - (n-1)/2) 0.21, 0, 0.1 + 0.2 k)."""
+    """docs/scene-specifications.md A4: row k holds base - k boxes at ((j - (n-1)/2) 0.21, 0, 0.1 + 0.2 k)."""
     bodies = [ground()]
     for k in range(base):
         n = base - k
@@ -116,13 +116,13 @@ def pyramid(base):
                               0.1, 0.008))
     count = base * (base + 1) // 2
     return scene(f"pyramid_{base}",
-                 f"SCENES.md A4 pyramid base={base}: {count} boxes (0.2 m, 8 g, mu 0.6) in "
+                 f"docs/scene-specifications.md A4 pyramid base={base}: {count} boxes (0.2 m, 8 g, mu 0.6) in "
                  "staggered rows with 1 cm gaps; it must stand still without sleep.",
                  0.01, 10.0, 0.6, 0.0, bodies)
 
 
 def box_pile_1000():
-    """SCENES.md B1: a lattice of 1000 yawed and tilted 1 kg boxes dropped into a container."""
+    """docs/scene-specifications.md B1: a lattice of 1000 yawed and tilted 1 kg boxes dropped into a container."""
     def wall(name, centre, half):
         return {"name": name, "type": "static", "position": centre,
                 "shapes": [{"type": "box", "half_extents": half, "material": "scene"}]}
@@ -142,7 +142,7 @@ def box_pile_1000():
         bodies.append(box(f"box{i}", [(ix - 4.5) * 0.35, (iy - 4.5) * 0.35, 0.15 + 0.35 * iz],
                           0.1, 1.0, orientation=[c / norm for c in q]))
     return scene("box_pile_1000",
-                 "SCENES.md B1 box_pile_1000 container: 1000 yawed, tilted 0.2 m boxes (1 kg, "
+                 "docs/scene-specifications.md B1 box_pile_1000 container: 1000 yawed, tilted 0.2 m boxes (1 kg, "
                  "mu 0.6) fall into a 3.6 x 3.6 m container and settle into one large island.",
                  0.01, 10.0, 0.6, 0.0, bodies)
 

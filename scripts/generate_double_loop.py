@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Writes samples/scenes/double_loop.json, SCENES.md B11 (the Alart-Curnier paper's figure 9, after
+"""Writes samples/scenes/double_loop.json, docs/scene-specifications.md B11 (the Alart-Curnier paper's figure 9, after
 Kaufman et al. 2005): two rails curled into two loops, each a chain of 1720 static capsules, and a
-ball spinning at 180 rad/s with no translational velocity. Built exactly as SCENES.md B11 says:
+ball spinning at 180 rad/s with no translational velocity. Built exactly as docs/scene-specifications.md B11 says:
 
   midline  C(phi) = (A phi + B sin phi, D phi / (2 pi), B (1 - cos phi)), phi in [-pi/2, 4 pi],
            A = 0.4, B = 1.0, D = 0.4 m; then a straight exit of 2 m along the tangent at 4 pi
@@ -12,7 +12,7 @@ ball spinning at 180 rad/s with no translational velocity. Built exactly as SCEN
 
 The rails are one static body with 3440 capsule shapes (geometry's capsule lies along local z, so
 each shape is rotated from z onto its segment). The ball's height z0 is solved here so the ball
-touches the polygonal chains (SCENES.md gives 0.0979805 m; the smooth-rail value is 0.0979796).
+touches the polygonal chains (docs/scene-specifications.md gives 0.0979805 m; the smooth-rail value is 0.0979796).
 The friction in the file is mu = 1.0 and the solver ac_newton (the paper's); `coulomb run double_loop --mu X` and the conformance cases
 set the others. Elastic turning is on (docs/tuning.md, "Elastic turning": without it the step loses
 (1/2) m v^2 (v h / R)^2 per step on the curved rails and mu = 1.0 falls before the top of loop 2 at
@@ -145,7 +145,7 @@ def main():
     rails_body = {"name": "rails", "type": "static", "shapes": shapes}
     lines = ["{", '  "name": "double_loop",',
              '  "description": ' + json.dumps(
-                 "SCENES.md B11 double_loop (Alart-Curnier 2011 fig. 9): a ball spinning at "
+                 "docs/scene-specifications.md B11 double_loop (Alart-Curnier 2011 fig. 9): a ball spinning at "
                  "180 rad/s on two rails of 1720 static capsules curled into two loops; mu 1.0 "
                  "(--mu 0.1, 0.3, 0.6 for the others) rolls through both loops.") + ",",
              '  "time_step": 0.01,', '  "steps": 500,',

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the friction scenes of issue 8 into samples/scenes/*.json, built exactly as
-../shared/design/SCENES.md specifies them: A1 sphere_slide, B5 spin_decay, B6 backspin and B7
+docs/scene-specifications.md specifies them: A1 sphere_slide, B5 spin_decay, B6 backspin and B7
 painleve_rod (mu 1.0 and 1.5). Geometry, masses, explicit principal inertias, one (mu, e) per scene,
 poses, velocities, dt and duration as written there; numbers with repr() (exact round trip).
 (A2 box_incline is written by generate_contact_scenes.py; B11 double_loop by
@@ -17,7 +17,7 @@ from scene_json import write_scene  # noqa: E402
 
 
 def rot_y(angle):
-    """Quaternion [w, x, y, z] of R_y(angle) (SCENES.md section 0): x -> (cos a, 0, -sin a)."""
+    """Quaternion [w, x, y, z] of R_y(angle) (docs/scene-specifications.md section 0): x -> (cos a, 0, -sin a)."""
     return [math.cos(angle / 2), 0.0, math.sin(angle / 2), 0.0]
 
 
@@ -32,7 +32,7 @@ def scene(name, description, dt, duration, mu, bodies):
 
 
 def sphere(velocity, angular_velocity=None):
-    """SCENES.md A1: sphere r 0.1 m, 1 kg, I = 0.4 m r^2 = 0.004, COM (0, 0, 0.1)."""
+    """docs/scene-specifications.md A1: sphere r 0.1 m, 1 kg, I = 0.4 m r^2 = 0.004, COM (0, 0, 0.1)."""
     body = {"name": "sphere", "position": [0.0, 0.0, 0.1], "linear_velocity": velocity}
     if angular_velocity is not None:
         body["angular_velocity"] = angular_velocity
@@ -43,7 +43,7 @@ def sphere(velocity, angular_velocity=None):
 
 def sphere_slide():
     return scene("sphere_slide",
-                 "SCENES.md A1 sphere_slide v0=2 mu=0.3: a sliding ball starts rolling at "
+                 "docs/scene-specifications.md A1 sphere_slide v0=2 mu=0.3: a sliding ball starts rolling at "
                  "t* = 0.194165 s and rolls at 5 v0 / 7 = 1.428571 m/s.",
                  0.01, 1.0, 0.3, [ground(), sphere([2.0, 0.0, 0.0])])
 
@@ -54,20 +54,20 @@ def spin_decay():
            "mass": m, "inertia": [m * 8.0 * h * h / 12.0] * 3,
            "shapes": [{"type": "box", "half_extents": [h, h, h], "material": "scene"}]}
     return scene("spin_decay",
-                 "SCENES.md B5 spin_decay box mu=0.1 w0=20: a box spinning on its face slows at "
+                 "docs/scene-specifications.md B5 spin_decay box mu=0.1 w0=20: a box spinning on its face slows at "
                  "-20.810153 rad/s^2 (four-corner torsional friction) and stops at 0.961069 s.",
                  0.01, 1.5, 0.1, [ground(), box])
 
 
 def backspin():
     return scene("backspin",
-                 "SCENES.md B6 backspin sphere v0=2 w0=100 mu=0.3: the ball stops at 0.679579 m, "
+                 "docs/scene-specifications.md B6 backspin sphere v0=2 w0=100 mu=0.3: the ball stops at 0.679579 m, "
                  "comes back and rolls home at -1.428571 m/s.",
                  0.01, 2.0, 0.3, [ground(), sphere([2.0, 0.0, 0.0], [0.0, -100.0, 0.0])])
 
 
 def capsule_x_inertia(r, hl, m):
-    """SCENES.md 'capsuleX(r, hl, m)': exact solid capsule, mass split by volume."""
+    """docs/scene-specifications.md 'capsuleX(r, hl, m)': exact solid capsule, mass split by volume."""
     h = 2.0 * hl
     v_c, v_s = math.pi * r * r * h, 4.0 / 3.0 * math.pi * r ** 3
     m_c, m_s = m * v_c / (v_c + v_s), m * v_s / (v_c + v_s)
@@ -89,11 +89,11 @@ def painleve_rod(mu, file_name):
                "is in the Painleve region: the foot sticks in the first step, "
                "P_n = 0.3773438, P_t = 0.4154954 N s")
     document = scene(file_name,
-                     f"SCENES.md B7 painleve_rod mu={mu}: a 1 m rod at atan 2 from the floor, foot "
+                     f"docs/scene-specifications.md B7 painleve_rod mu={mu}: a 1 m rod at atan 2 from the floor, foot "
                      f"sliding at 1 m/s, {outcome}.", 0.01, 1.0, mu, [ground(), rod])
     # The upper end lands at ~5 m/s (5 cm per step): a 0.1 m speculative margin (instead of 5 mm)
     # lets the velocity step stop it at the floor instead of 2.6 cm inside it, whose correction
-    # would raise the energy. It changes no rest geometry (SCENES.md section 0).
+    # would raise the energy. It changes no rest geometry (docs/scene-specifications.md section 0).
     document["solver"] = {"speculative_margin": 0.1}
     return document
 

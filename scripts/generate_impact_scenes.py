@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the impact and mass-ratio scenes of issue 8 into samples/scenes/*.json, built exactly as
-../shared/design/SCENES.md specifies them (section 0 rules, A5 mass_ratio, A7 newton_cradle, B4
+docs/scene-specifications.md specifies them (section 0 rules, A5 mass_ratio, A7 newton_cradle, B4
 mass_tower): geometry, masses, explicit principal inertias, one (mu, e) per scene, dt, duration and
 body order. Positions are the double values of the harness expressions (0.1 * k for the cradle),
 written with repr(), which round-trips exactly: the cradle's balls 4 and 5 start 2.8e-17 m apart
@@ -16,7 +16,7 @@ from scene_json import write_scene  # noqa: E402
 
 
 def box_inertia(h, m):
-    """SCENES.md 'box(h, m)': cube of half side h, I = m 8 h^2 / 12 on every axis."""
+    """docs/scene-specifications.md 'box(h, m)': cube of half side h, I = m 8 h^2 / 12 on every axis."""
     return m * 8.0 * h * h / 12.0
 
 
@@ -30,7 +30,7 @@ def box(name, z, m):
 
 
 def ball(name, x, velocity=None):
-    """SCENES.md 'sphere(r, m)' with r 0.05, m 1: I = 0.4 m r^2 = 0.001."""
+    """docs/scene-specifications.md 'sphere(r, m)' with r 0.05, m 1: I = 0.4 m r^2 = 0.001."""
     body = {"name": name, "position": [x, 0.0, 0.0]}
     if velocity is not None:
         body["linear_velocity"] = velocity
@@ -40,7 +40,7 @@ def ball(name, x, velocity=None):
     return body
 
 
-# SCENES.md compares per-step normal impulses to the analytic loads within 1e-6 (relative) and the
+# docs/scene-specifications.md compares per-step normal impulses to the analytic loads within 1e-6 (relative) and the
 # cradle's velocities to the LCP answer: the world's default residual tolerance (1e-6) leaves
 # ~1e-5 on the loads, so these scenes ask for 1e-10 (Newton solvers reach it in a few more steps).
 SOLVER = {"tolerance": 1e-10}
@@ -56,31 +56,31 @@ def scene(name, description, dt, duration, mu, e, bodies, extra=None, solver=Non
 
 
 def mass_ratio(light, heavy, tag, text):
-    """SCENES.md A5: light box at z 0.1 under the heavy box at z 0.3, mu 0.6, 5 s."""
+    """docs/scene-specifications.md A5: light box at z 0.1 under the heavy box at z 0.3, mu 0.6, 5 s."""
     return scene(f"mass_ratio_{tag}",
-                 f"SCENES.md A5 mass_ratio {text}: a {heavy:g} kg box resting on a {light:g} kg "
+                 f"docs/scene-specifications.md A5 mass_ratio {text}: a {heavy:g} kg box resting on a {light:g} kg "
                  "box (0.2 m, mu 0.6); the light box must not be squeezed out (sink < 1e-6 m).",
                  0.01, 5.0, 0.6, 0.0, [ground(), box("light", 0.1, light), box("heavy", 0.3, heavy)])
 
 
 def mass_tower(variant):
-    """SCENES.md B4: four boxes at z 0.1, 0.3, 0.5, 0.7, mass ratio 10 at every interface."""
+    """docs/scene-specifications.md B4: four boxes at z 0.1, 0.3, 0.5, 0.7, mass ratio 10 at every interface."""
     masses = [1000.0, 100.0, 10.0, 1.0] if variant == "light_on_top" else [1.0, 10.0, 100.0, 1000.0]
     bodies = [ground()] + [box(f"box{i}", z, m) for i, (z, m) in
                            enumerate(zip([0.1, 0.3, 0.5, 0.7], masses))]
     return scene(f"mass_tower_{variant}",
-                 f"SCENES.md B4 mass_tower {variant}: four 0.2 m boxes of {masses[0]:g} to "
+                 f"docs/scene-specifications.md B4 mass_tower {variant}: four 0.2 m boxes of {masses[0]:g} to "
                  f"{masses[-1]:g} kg (bottom to top, mu 0.6) that must stand still with the analytic "
                  "interface loads.",
                  0.01, 10.0, 0.6, 0.0, bodies)
 
 
 def newton_cradle():
-    """SCENES.md A7: no gravity; striker at -0.15 at 1 m/s, balls 2-5 at 0.1 * k, touching."""
+    """docs/scene-specifications.md A7: no gravity; striker at -0.15 at 1 m/s, balls 2-5 at 0.1 * k, touching."""
     bodies = [ball("ball1", -0.15, [1.0, 0.0, 0.0])] + [ball(f"ball{k + 2}", 0.1 * k)
                                                          for k in range(4)]
     return scene("newton_cradle",
-                 "SCENES.md A7 newton_cradle 5_balls e=1: a striker at 1 m/s hits four touching "
+                 "docs/scene-specifications.md A7 newton_cradle 5_balls e=1: a striker at 1 m/s hits four touching "
                  "balls (no gravity, mu 0, e 1); with propagating impacts the last ball leaves "
                  "with the momentum.",
                  0.01, 1.0, 0.0, 1.0, bodies,

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the jointed scenes of issue 9 into samples/scenes/*.json, built exactly as
-../shared/design/SCENES.md specifies them: A6 chain (N=10, N=50, maximal), B8 pendulum (maximal),
+docs/scene-specifications.md specifies them: A6 chain (N=10, N=50, maximal), B8 pendulum (maximal),
 B9 double_pendulum (release_horizontal, maximal), B10 four_bar (hinges, redundant; rssr), plus a
 rope bridge of hinged planks carrying three boxes (one island of joints and contacts). Joint
 anchors and axes are written in world coordinates at t = 0 (docs/scene-format.md "Joints").
@@ -13,11 +13,11 @@ import math
 import os
 import sys
 
-NO_COLLISION = {"category": 0, "mask": 0}  # SCENES.md: "no contacts" / "capsules do not collide"
+NO_COLLISION = {"category": 0, "mask": 0}  # docs/scene-specifications.md: "no contacts" / "capsules do not collide"
 
 
 def rot_y(angle):
-    """Quaternion [w, x, y, z] of R_y(angle) (SCENES.md section 0): x -> (cos a, 0, -sin a)."""
+    """Quaternion [w, x, y, z] of R_y(angle) (docs/scene-specifications.md section 0): x -> (cos a, 0, -sin a)."""
     return [math.cos(angle / 2), 0.0, math.sin(angle / 2), 0.0]
 
 
@@ -47,7 +47,7 @@ def scene(name, description, bodies, joints, steps=1000, dt=0.01, **extra):
 
 
 def chain(n):
-    """SCENES.md A6: capsuleX(r 0.01, hl 0.04, 0.1 kg) links released horizontal along +x."""
+    """docs/scene-specifications.md A6: capsuleX(r 0.01, hl 0.04, 0.1 kg) links released horizontal along +x."""
     inertia = [4.857143e-6, 7.557143e-5, 7.557143e-5]
     bodies, joints = [], []
     for i in range(n):
@@ -57,15 +57,15 @@ def chain(n):
                        "body_a": "world" if i == 0 else f"link{i - 1}", "body_b": f"link{i}",
                        "anchor": [0.1 * i, 0.0, 0.0]})
     return scene(f"chain_{n}",
-                 f"SCENES.md A6 maximal: {n} capsule links (0.1 kg, 0.1 m) on ball joints, released "
+                 f"docs/scene-specifications.md A6 maximal: {n} capsule links (0.1 kg, 0.1 m) on ball joints, released "
                  "horizontal; gap 0 and energy constant in the model (10 s at dt 0.01).",
                  bodies, joints)
 
 
 def pendulum():
-    """SCENES.md B8 maximal: 1 kg sphere bob (I 0.001) at (1, 0, 0), ball joint at the origin."""
+    """docs/scene-specifications.md B8 maximal: 1 kg sphere bob (I 0.001) at (1, 0, 0), ball joint at the origin."""
     return scene("pendulum",
-                 "SCENES.md B8 maximal: a 1 kg bob 1 m from a ball joint at the origin, released "
+                 "docs/scene-specifications.md B8 maximal: a 1 kg bob 1 m from a ball joint at the origin, released "
                  "horizontal; period 2.369025573 s (elliptic integral).",
                  [body("bob", [1.0, 0.0, 0.0], 1.0, [0.001] * 3,
                        [{"type": "sphere", "radius": 0.05, "filter": NO_COLLISION}])],
@@ -73,11 +73,11 @@ def pendulum():
 
 
 def double_pendulum():
-    """SCENES.md B9 release_horizontal, maximal: two 0.5 m capsules on hinges about world y."""
+    """docs/scene-specifications.md B9 release_horizontal, maximal: two 0.5 m capsules on hinges about world y."""
     inertia = [1.978082e-4, 0.01985808, 0.01985808]
     shape = [capsule_x(0.02, 0.23, filter=NO_COLLISION)]
     return scene("double_pendulum",
-                 "SCENES.md B9 release_horizontal, maximal: two 1 kg, 0.5 m capsules on hinges about "
+                 "docs/scene-specifications.md B9 release_horizontal, maximal: two 1 kg, 0.5 m capsules on hinges about "
                  "y, released horizontal (chaotic; energy constant, gaps 0).",
                  [body("link1", [0.25, 0.0, 0.0], 1.0, inertia, shape),
                   body("link2", [0.75, 0.0, 0.0], 1.0, inertia, shape)],
@@ -88,7 +88,7 @@ def double_pendulum():
 
 
 def four_bar(variant):
-    """SCENES.md B10: crank 0.4, coupler 1.2, rocker 0.8, ground 1.0 m; theta2 = 90 deg, open
+    """docs/scene-specifications.md B10: crank 0.4, coupler 1.2, rocker 0.8, ground 1.0 m; theta2 = 90 deg, open
     branch, at rest. `hinges`: four hinges about y (3 redundant rows); `rssr`: balls at A and B."""
     a_pt = [0.0, 0.0, 0.4]
     b_pt = [1.135384473, 0.0, 0.788461188]
@@ -123,7 +123,7 @@ def four_bar(variant):
             "Delassus matrix)" if variant == "hinges" else
             "hinges at the ground, ball joints at A and B (no redundant rows)")
     return scene(name,
-                 f"SCENES.md B10 {variant}: crank-rocker four-bar (0.4/1.2/0.8/1.0 m) released at "
+                 f"docs/scene-specifications.md B10 {variant}: crank-rocker four-bar (0.4/1.2/0.8/1.0 m) released at "
                  f"theta2 = 90 deg; {what}. theta4 follows Freudenstein's closed form.",
                  bodies, joints)
 

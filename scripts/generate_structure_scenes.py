@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the structure scenes of issue 8 into samples/scenes/*.json, built exactly as
-../shared/design/SCENES.md specifies them: B2 card_house (mu 0.6 stands, 0.2 must collapse) and
+docs/scene-specifications.md specifies them: B2 card_house (mu 0.6 stands, 0.2 must collapse) and
 B3 masonry_arch (mu 0.6 stands, 0.2 and 0.1 must collapse), one JSON per friction coefficient
 (card_house_mu0_6.json, ...). Positions, orientations and hull vertices are computed in double
 precision and written with repr() (exact round trip), so the designed contacts touch exactly.
@@ -29,7 +29,7 @@ def card(name, x, z, angle):
 
 
 def a_frame(prefix, x_apex, z_base):
-    """SCENES.md B2: two cards leaning on each other, each on its bottom inner edge."""
+    """docs/scene-specifications.md B2: two cards leaning on each other, each on its bottom inner edge."""
     dx = (CARD_L / 2) * math.sin(PSI) + (CARD_T / 2) * math.cos(PSI)
     z = z_base + (CARD_L / 2) * math.cos(PSI) + (CARD_T / 2) * math.sin(PSI)
     return [card(prefix + "_left", x_apex - dx, z, PSI), card(prefix + "_right", x_apex + dx, z, -PSI)]
@@ -43,7 +43,7 @@ def card_house(mu, tag):
     bodies += a_frame("top", 0.0, z_flat + CARD_T)
     verdict = "stands" if mu > 0.3292 else "must collapse"
     return scene(f"card_house_mu{tag}",
-                 f"SCENES.md B2 card_house mu={mu}: two A-frames, a flat card and a top frame of "
+                 f"docs/scene-specifications.md B2 card_house mu={mu}: two A-frames, a flat card and a top frame of "
                  f"0.2 x 0.4 m cards leaning at 25 deg; {verdict} (static mu_min 0.3292).",
                  0.01, 10.0, mu, 0.0, bodies)
 
@@ -89,7 +89,7 @@ def masonry_arch(mu, tag):
     bodies += [voussoir(k) for k in range(ARCH_N)]
     verdict = "stands" if mu > 0.3086 else "must collapse"
     return scene(f"masonry_arch_mu{tag}",
-                 f"SCENES.md B3 masonry_arch mu={mu}: 17 convex-hull voussoirs (R 1 m, t 0.25 m, "
+                 f"docs/scene-specifications.md B3 masonry_arch mu={mu}: 17 convex-hull voussoirs (R 1 m, t 0.25 m, "
                  f"46.2 kg each) on two abutments; {verdict} (thrust-line mu_min 0.3086).",
                  0.01, 10.0, mu, 0.0, bodies)
 

@@ -224,7 +224,7 @@ def plot_scaling(rows, out):
         pts.sort()
         ax.plot([p[0] for p in pts], [p[1] for p in pts], "-" if policy != "baumgarte" else "--",
                 marker="o", ms=4, lw=1, color=colour(solver), label=f"{solver} {policy}")
-    ax.set_title("ball chains, dt 0.01 (SCENES.md A6)", fontsize=8)
+    ax.set_title("ball chains, dt 0.01 (docs/scene-specifications.md A6)", fontsize=8)
     ax.set_xlabel("links")
     ax.legend(fontsize=6, frameon=False)
     for a in axes:

@@ -2,10 +2,11 @@
 // W = J M^-1 J^T kept factored, as Bullet's sequential impulse keeps it (issue 7 item 11): per
 // solver block (1 or 3 rows) its Jacobian on at most two bodies of the island, J_s (k x 6), and
 // G_s = M_s^-1 J_s^T (6 x k). Nothing of size nnz(W) is formed: W x costs O(rows) through the body
-// velocities dv = sum_s G_s x_s, u = J dv (SOLVERS.md (1.1)), and a Gauss-Seidel step on block b
-// reads u_b = q_b + J_b dv and moves dv by G_b (r_b' - r_b), O(1) per contact instead of one 3 x 3
-// product per contact sharing a body (~28 on a pyramid). Solvers that need W's entries (Newton,
-// Lemke, staggered) get them from toBlockSparse(), built once on demand and cached.
+// velocities dv = sum_s G_s x_s, u = J dv (docs/solver-derivations.md (1.1)), and a Gauss-Seidel
+// step on block b reads u_b = q_b + J_b dv and moves dv by G_b (r_b' - r_b), O(1) per contact
+// instead of one 3 x 3 product per contact sharing a body (~28 on a pyramid). Solvers that need W's
+// entries (Newton, Lemke, staggered) get them from toBlockSparse(), built once on demand and
+// cached.
 #include <coulomb/solvers/BlockSparseMatrix.hpp>
 
 #include <Eigen/Core>

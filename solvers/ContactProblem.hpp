@@ -1,6 +1,6 @@
 #pragma once
-// The one problem every solver solves (ARCHITECTURE.md section 4, SOLVERS.md (1.1)-(1.5), (10.1)):
-// find r with u = W r + q and, block by block,
+// The one problem every solver solves (docs/architecture.md section 4, docs/solver-derivations.md
+// (1.1)-(1.5), (10.1)): find r with u = W r + q and, block by block,
 //   Equality    u_i = 0, r_i free                       (bilateral joint rows)
 //   Bounded     lower <= r_i <= upper, box complementarity (motors, joint friction)
 //   Unilateral  0 <= r_i  _|_  u_i >= 0                   (limits, frictionless contacts)

@@ -85,9 +85,10 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     report.note(std::string("cannot prepare the problem: ") + e.what());
     return finish();
   }
-  // Start: the given one, else the warm start, kept only if it beats r = 0 (SOLVERS.md (3.6)).
-  // Each candidate's residual keeps its dv (body space), handed to the solver with the chosen
-  // start (PreparedProblem::start) so that it does not compute them again.
+  // Start: the given one, else the warm start, kept only if it beats r = 0
+  // (docs/solver-derivations.md (3.6)). Each candidate's residual keeps its dv (body space), handed
+  // to the solver with the chosen start (PreparedProblem::start) so that it does not compute them
+  // again.
   Eigen::VectorXd &u = work.u, &dv = work.dv, &r = work.r;
   r.setZero(n);
   double e = prepared.residual(r, u, dv);

@@ -1,8 +1,9 @@
 #pragma once
-// The exact Coulomb law of one contact, (normal, tangent1, tangent2) ordering (SOLVERS.md section
-// 1): cone K = {||x_T|| <= mu x_N}, dual cone K*, De Saxce shift u + mu ||u_T|| e_N, projections
-// and the regime classification. The isotropic functions are inline: they sit in every solver's
-// inner loop. Anisotropic (elliptic) variants: K = {||M^-1 x_T|| <= x_N}, M = diag(mu1, mu2).
+// The exact Coulomb law of one contact, (normal, tangent1, tangent2) ordering
+// (docs/solver-derivations.md section 1): cone K = {||x_T|| <= mu x_N}, dual cone K*, De Saxce
+// shift u + mu ||u_T|| e_N, projections and the regime classification. The isotropic functions are
+// inline: they sit in every solver's inner loop. Anisotropic (elliptic) variants: K = {||M^-1 x_T||
+// <= x_N}, M = diag(mu1, mu2).
 #include <Eigen/Core>
 
 #include <cmath>
@@ -38,7 +39,8 @@ inline void projectOntoCone(double x[3], double mu, Norm norm) {
 }
 }  // namespace detail
 
-// P_K(x), SOLVERS.md (2.1); same branches and operations as fc3d_project_cone. No division by mu.
+// P_K(x), docs/solver-derivations.md (2.1); same branches and operations as fc3d_project_cone. No
+// division by mu.
 inline void projectOntoCone(double x[3], double mu) {
   detail::projectOntoCone(x, mu, [](double a, double b) { return std::hypot(a, b); });
 }
@@ -54,17 +56,17 @@ inline Eigen::Vector3d projectOntoCone(const Eigen::Vector3d& x, double mu) {
   return {v[0], v[1], v[2]};
 }
 
-// P_{K*}(y), SOLVERS.md (2.2); K* = {mu ||y_T|| <= y_N}.
+// P_{K*}(y), docs/solver-derivations.md (2.2); K* = {mu ||y_T|| <= y_N}.
 Eigen::Vector3d projectOntoDualCone(const Eigen::Vector3d& y, double mu);
 
-// P_{D(radius)}(y): disk of the given radius, 0 when radius <= 0, SOLVERS.md (2.5).
+// P_{D(radius)}(y): disk of the given radius, 0 when radius <= 0, docs/solver-derivations.md (2.5).
 inline Eigen::Vector2d projectOntoDisk(const Eigen::Vector2d& y, double radius) {
   if (radius <= 0) return Eigen::Vector2d::Zero();
   const double n = std::hypot(y[0], y[1]);
   return n <= radius ? y : Eigen::Vector2d(y * (radius / n));
 }
 
-// De Saxce shift u + mu ||u_T|| e_N, SOLVERS.md (1.4).
+// De Saxce shift u + mu ||u_T|| e_N, docs/solver-derivations.md (1.4).
 inline Eigen::Vector3d deSaxceShift(const Eigen::Vector3d& u, double mu) {
   return {u[0] + mu * std::hypot(u[1], u[2]), u[1], u[2]};
 }
@@ -78,7 +80,8 @@ inline Eigen::Vector3d deSaxceShift(const Eigen::Vector3d& u, double mu1, double
   return {u[0] + std::hypot(mu1 * u[1], mu2 * u[2]), u[1], u[2]};
 }
 
-// Regime of a pair (r, u), SOLVERS.md (1.6); `tolerance` is relative to max(||r||, ||u||).
+// Regime of a pair (r, u), docs/solver-derivations.md (1.6); `tolerance` is relative to max(||r||,
+// ||u||).
 enum class ContactRegime { TakeOff, Stick, Slip, Violated };
 ContactRegime classifyContact(const Eigen::Vector3d& r, const Eigen::Vector3d& u, double mu,
                               double tolerance = 1e-8);

@@ -1,9 +1,10 @@
 #pragma once
-// The Delassus operator W of a contact problem (u = W r + q, SOLVERS.md (1.1)) behind one type:
-// dense, block-sparse (blocks of 1 or 3 rows, see BlockSparseMatrix), body-space (J and M^-1 J^T
-// per block, see BodySpaceDelassus: what the engine gives large islands) or matrix-free (a function
-// computing W x). Solvers that need entries ask for toBlockSparse(); for a matrix-free operator
-// that costs one product per unknown, for a body-space one O(nnz W) once (cached).
+// The Delassus operator W of a contact problem (u = W r + q, docs/solver-derivations.md (1.1))
+// behind one type: dense, block-sparse (blocks of 1 or 3 rows, see BlockSparseMatrix), body-space
+// (J and M^-1 J^T per block, see BodySpaceDelassus: what the engine gives large islands) or
+// matrix-free (a function computing W x). Solvers that need entries ask for toBlockSparse(); for a
+// matrix-free operator that costs one product per unknown, for a body-space one O(nnz W) once
+// (cached).
 #include <coulomb/solvers/BlockSparseMatrix.hpp>
 #include <coulomb/solvers/BodySpaceDelassus.hpp>
 

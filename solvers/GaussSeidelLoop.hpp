@@ -1,9 +1,9 @@
 #pragma once
-// The Gauss-Seidel skeleton shared by pgs and bgs (SOLVERS.md Algorithm 3.1): sweep the blocks in a
-// fixed or seeded-shuffled order, give each contact its local free velocity
-// q~_c = q_c + sum_{d != c} W_cd r_d (3.1) and let the solver's local rule propose r_c, relax the
-// step (3.5), solve scalar rows exactly (10.1), check the common residual every few sweeps on
-// u = W r + q recomputed, keep the best iterate, detect stalls.
+// The Gauss-Seidel skeleton shared by pgs and bgs (docs/solver-derivations.md Algorithm 3.1): sweep
+// the blocks in a fixed or seeded-shuffled order, give each contact its local free velocity q~_c =
+// q_c + sum_{d != c} W_cd r_d (3.1) and let the solver's local rule propose r_c, relax the step
+// (3.5), solve scalar rows exactly (10.1), check the common residual every few sweeps on u = W r +
+// q recomputed, keep the best iterate, detect stalls.
 #include <coulomb/solvers/PreparedProblem.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
 

@@ -1,5 +1,6 @@
 #pragma once
-// THE common residual every solver reports (ARCHITECTURE.md section 4, SOLVERS.md (1.8), (10.1)):
+// THE common residual every solver reports (docs/architecture.md section 4,
+// docs/solver-derivations.md (1.8), (10.1)):
 //   contact c:  F_c = r_c - P_K(r_c - (u_c + mu ||u_T,c|| e_N))     (natural map, rho = 1)
 //   scalar i:   F_i = r_i - P_C(r_i - u_i)      (C = R, [lo, hi] or [0, inf))
 //   e_abs = sqrt(sum ||F||^2),  e_rel = e_abs / (1 + ||q||),  u = W r + q recomputed here.

@@ -1,8 +1,8 @@
 #pragma once
-// Which solvers an island gets, in order, and why (ARCHITECTURE.md section 4, SOLVERS.md section
-// 9). SolverChooser fills it from the world's SolvePolicy (SolvePolicy.hpp); solveWithFallback
-// runs it. A plan holds numbers and enums only: its reason is formatted when asked (reason()),
-// never on the step's hot path.
+// Which solvers an island gets, in order, and why (docs/architecture.md section 4,
+// docs/solver-derivations.md section 9). SolverChooser fills it from the world's SolvePolicy
+// (SolvePolicy.hpp); solveWithFallback runs it. A plan holds numbers and enums only: its reason is
+// formatted when asked (reason()), never on the step's hot path.
 #include <coulomb/solvers/SolverOptions.hpp>
 
 #include <cstdint>
@@ -12,8 +12,8 @@
 
 namespace coulomb::solvers {
 
-/// The cheap features of a problem the automatic choice reads (SOLVERS.md section 9), kept in the
-/// plan so that a report can show them next to the reason.
+/// The cheap features of a problem the automatic choice reads (docs/solver-derivations.md section
+/// 9), kept in the plan so that a report can show them next to the reason.
 struct ProblemFeatures {
   int contacts = 0;          // Contact3D blocks
   int activeContacts = 0;    // q_N < 0 or warm-start r_N > 0 (likely to carry load)
@@ -41,7 +41,8 @@ struct SolveAttempt {
   friend bool operator==(const SolveAttempt&, const SolveAttempt&) = default;
 };
 
-/// Which rule of the policy made the plan (SolverChooser::automatic, SOLVERS.md section 9).
+/// Which rule of the policy made the plan (SolverChooser::automatic, docs/solver-derivations.md
+/// section 9).
 enum class PlanRule : std::uint8_t {
   ZeroIsExact,        // every q_N >= 0, no equality or bounded rows: r = 0 is exact
   OneContact,         // one contact: bgs solves it exactly in one sweep

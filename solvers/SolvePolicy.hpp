@@ -3,7 +3,7 @@
 //   choice     which solvers: the automatic rules, a preferred solver before the automatic
 //              fallbacks, or an exact chain of attempts {solver, cap, stall window, tolerance};
 //   options    what every attempt shares (tolerance, iteration cap, warm start, time limit);
-//   chooser    the automatic rules' thresholds (SOLVERS.md section 9);
+//   chooser    the automatic rules' thresholds (docs/solver-derivations.md section 9);
 //   promotion  the one rule that looks across steps (a fallback that finished a step goes first
 //              in the next).
 // Validated once (validate(), when a World takes it); settable between steps
@@ -23,10 +23,12 @@ class SolverRegistry;
 /// Thresholds of the automatic rules (each: unit, default, reason).
 struct ChooserSettings {
   // [-] nu above which an island is a pile/tower and Gauss-Seidel goes first (AC11 section 5.2:
-  // Newton still converges up to nu ~ 1.5-2; SOLVERS.md section 9 table). Default 2.
+  // Newton still converges up to nu ~ 1.5-2; docs/solver-derivations.md section 9 table).
+  // Default 2.
   double pileNu = 2.0;
   // [unknowns] Newton (dense/sparse LU per iteration) only up to this size; beyond it the
-  // factorization dominates and Gauss-Seidel goes first. Default 3000 (SOLVERS.md section 9).
+  // factorization dominates and Gauss-Seidel goes first. Default 3000 (docs/solver-derivations.md
+  // section 9).
   int newtonMaxUnknowns = 3000;
   // [contacts] when the dof count is unknown (captured problems), islands with at least this many
   // contacts are treated as piles (Gauss-Seidel first, Newton as the fallback). Default 500: on
@@ -45,7 +47,7 @@ struct ChooserSettings {
   // case's 1e-9 E(0) bound (docs/benchmarks.md, "Body-space sweeps").
   int factoredTrySweeps = 0;
   // [-] mass ratio kappa above which Newton goes first whatever nu (Gauss-Seidel stagnates on
-  // large mass ratios, SOLVERS.md section 9). Default 1e3.
+  // large mass ratios, docs/solver-derivations.md section 9). Default 1e3.
   double newtonMassRatio = 1e3;
   // [sweeps] stall window of pgs on piles and towers, where ac_newton is the fallback: pgs gives
   // way once its best residual fell by < 1 % over this many sweeps. Default 20: every pgs step

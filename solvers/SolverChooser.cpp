@@ -113,8 +113,8 @@ void SolverChooser::automatic(const ProblemFeatures& f, SolvePlan& plan) const {
   const bool newtonSized = f.unknowns <= settings_.newtonMaxUnknowns;
   const int scalarRows = f.equalityRows + f.boundedRows + f.unilateralRows;
   if (f.unknowns == 0 || f.zeroIsExact) {
-    // SOLVERS.md section 9, first row: every contact separates or rests without approaching, so
-    // r = 0 is exact; the solver returns at its start residual without iterating.
+    // docs/solver-derivations.md section 9, first row: every contact separates or rests without
+    // approaching, so r = 0 is exact; the solver returns at its start residual without iterating.
     return set(PlanRule::ZeroIsExact, {{"bgs"}});
   }
   if (f.contacts == 1 && scalarRows == 0)  // Algorithm 4.1: exact in one sweep

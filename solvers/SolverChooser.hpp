@@ -1,6 +1,6 @@
 #pragma once
-// The per-island plan (SOLVERS.md section 9, tuned on the corpus: docs/solvers.md "Choosing a
-// solver") from a SolverChoice (SolvePolicy.hpp):
+// The per-island plan (docs/solver-derivations.md section 9, tuned on the corpus: docs/solvers.md
+// "Choosing a solver") from a SolverChoice (SolvePolicy.hpp):
 //   Automatic  the primary and its fallbacks from cheap features of the problem (contacts,
 //              scalar rows, nu = 3n/m when the dof count m is known, the mass-ratio estimate
 //              kappa from W's diagonal, size); the rule is kept in the plan (SolvePlan::reason);
@@ -14,7 +14,8 @@
 
 namespace coulomb::solvers {
 
-/// Measures the features of SOLVERS.md section 9 (one pass over q and W's diagonal blocks).
+/// Measures the features of docs/solver-derivations.md section 9 (one pass over q and W's diagonal
+/// blocks).
 ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
                                        const IslandFeatures& features);
 

@@ -2,7 +2,8 @@
 // Options common to every solver. Each solver family has its own typed struct next to it
 // (pgs/PgsSolver.hpp: PgsOptions, bgs/BgsSolver.hpp: BgsOptions, newton/AcNewtonSolver.hpp:
 // AcNewtonOptions, ...), passed to the solver's constructor: adding a solver never changes this
-// file (ARCHITECTURE.md golden rule 4: typed value structs, unit, default and reason per field).
+// file (docs/architecture.md golden rule 4: typed value structs, unit, default and reason per
+// field).
 #include <limits>
 #include <optional>
 #include <string>
@@ -10,8 +11,9 @@
 namespace coulomb::solvers {
 
 struct SolverOptions {
-  // [-] Target of the common relative residual e_rel (SOLVERS.md (1.8)). Default 1e-8: the corpus
-  // target; a simulation step is visually exact far above it (1e-4..1e-6 are common in games).
+  // [-] Target of the common relative residual e_rel (docs/solver-derivations.md (1.8)). Default
+  // 1e-8: the corpus target; a simulation step is visually exact far above it (1e-4..1e-6 are
+  // common in games).
   double tolerance = 1e-8;
   // [iterations: Newton steps or Gauss-Seidel sweeps] 0 = the solver's own default (pgs, bgs:
   // 10000 sweeps like Siconos' NSGS; ac_newton: 200 like AC11 section 5.2). Lemke's pivot limit
@@ -21,8 +23,8 @@ struct SolverOptions {
   // a corpus run must never hang. Default: no limit (the step loop sets one when it needs to).
   double timeLimitSeconds = std::numeric_limits<double>::infinity();
   // Start from ContactProblem::warmStart when present (projected onto the constraint set and
-  // kept only if its residual beats r = 0, SOLVERS.md (3.6)). Default on: warm starts are what
-  // make stacks cheap.
+  // kept only if its residual beats r = 0, docs/solver-derivations.md (3.6)). Default on: warm
+  // starts are what make stacks cheap.
   bool useWarmStart = true;
   // Record (iteration, seconds, e_rel) after every iteration in SolverReport::history. Default off:
   // it costs one residual evaluation per iteration for solvers that do not compute it anyway.

@@ -14,17 +14,20 @@ namespace coulomb::solvers {
 
 SolverRegistry SolverRegistry::builtIn() {
   SolverRegistry r;
-  r.add({"pgs", "projected Gauss-Seidel / PSOR, exact per-contact cone projection (SOLVERS.md 3)",
+  r.add({"pgs",
+         "projected Gauss-Seidel / PSOR, exact per-contact cone projection "
+         "(docs/solver-derivations.md 3)",
          [] { return std::make_unique<PgsSolver>(); }});
-  r.add({"bgs", "blocked Gauss-Seidel, exact local 3x3 contact solve (SOLVERS.md 4)",
+  r.add({"bgs",
+         "blocked Gauss-Seidel, exact local 3x3 contact solve (docs/solver-derivations.md 4)",
          [] { return std::make_unique<BgsSolver>(); }});
   r.add({"ac_newton",
          "Alart-Curnier nonsmooth Newton, Goldstein-Price search, regularized sparse LU "
-         "(SOLVERS.md 5)",
+         "(docs/solver-derivations.md 5)",
          [] { return std::make_unique<AcNewtonSolver>(); }});
   r.add({"prox",
          "proximal-point outer loop around the Alart-Curnier Newton: FC(W + s I, q - s r_k), "
-         "for singular W of redundant contacts (SOLVERS.md 5.9)",
+         "for singular W of redundant contacts (docs/solver-derivations.md 5.9)",
          [] {
            AcNewtonOptions options;
            options.proximalFromStart = true;
@@ -32,7 +35,7 @@ SolverRegistry SolverRegistry::builtIn() {
          }});
   r.add({"fb_newton",
          "Fischer-Burmeister nonsmooth Newton for second-order cones, cancellation-free "
-         "eigenvalue, Armijo search, shared Newton loop (SOLVERS.md 6)",
+         "eigenvalue, Armijo search, shared Newton loop (docs/solver-derivations.md 6)",
          [] { return std::make_unique<FbNewtonSolver>(); }});
   r.add({"ldlt",
          "equality rows only (joint islands without limits or contacts): W r = -q by sparse "
@@ -40,11 +43,11 @@ SolverRegistry SolverRegistry::builtIn() {
          [] { return std::make_unique<EqualityLdltSolver>(); }});
   r.add({"lemke",
          "Lemke pivoting on the faceted-cone LCP (8 directions, Stewart-Trinkle slack rows), "
-         "lexicographic anti-cycling (SOLVERS.md 7)",
+         "lexicographic anti-cycling (docs/solver-derivations.md 7)",
          [] { return std::make_unique<LemkeSolver>(); }});
   r.add({"staggered",
          "staggered projections (Kaufman et al. 2008): normal and friction QPs by APGD with "
-         "restart (SOLVERS.md 8)",
+         "restart (docs/solver-derivations.md 8)",
          [] { return std::make_unique<StaggeredSolver>(); }});
   return r;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// What every solve returns besides the impulses (ARCHITECTURE.md golden rule 3): status,
+// What every solve returns besides the impulses (docs/architecture.md golden rule 3): status,
 // iterations, time, the common residual (1.8) measured after the last update, the solver's own
 // measure, an optional history and a message saying what happened (regularization, fallbacks...).
 #include <limits>

@@ -1,5 +1,6 @@
 #include <coulomb/engine/io/UrdfCollisions.hpp>
 #include <coulomb/engine/io/UrdfPaths.hpp>
+#include <coulomb/geometry/HullContacts.hpp>
 #include <coulomb/geometry/MakeConvexHull.hpp>
 #include <coulomb/geometry/MeshLoader.hpp>
 
@@ -22,6 +23,7 @@ geometry::ConvexHull hullOfMesh(const geometry::TriangleMesh& mesh) {
     }
     hull.triangles.push_back(mapped);
   }
+  geometry::buildHullFaces(hull);  // the contact queries' faces and edges, re-indexed with it
   return hull;
 }
 

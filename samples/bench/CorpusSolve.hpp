@@ -2,7 +2,8 @@
 // Solving fc3d corpus problems for the benchmarks (bench/SolverCorpusBench, `coulomb bench
 // --parts corpus`): the folder's problems in size order, one solve by a registry name or by
 // "auto" (SolverChooser + solveWithFallback, every attempt summed), the median time over repeats,
-// and the well-posedness estimate nu-hat of a captured problem (SOLVERS.md section 9).
+// and the well-posedness estimate nu-hat of a captured problem (docs/solver-derivations.md section
+// 9).
 #include <coulomb/solvers/ContactProblem.hpp>
 #include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/SolverOptions.hpp>
@@ -43,8 +44,8 @@ solvers::SolveOutcome solveMedian(const solvers::ContactProblem& problem, const 
                                   const solvers::SolverOptions& options,
                                   const solvers::SolverRegistry& registry, int repeats);
 
-/// nu-hat = 3 n / rank(W) (SOLVERS.md (9.1) for a problem without bodies: rank W <= m, so
-/// nu-hat >= nu), by a column-pivoting QR of the dense W; NaN above `maxUnknowns` unknowns.
+/// nu-hat = 3 n / rank(W) (docs/solver-derivations.md (9.1) for a problem without bodies: rank W <=
+/// m, so nu-hat >= nu), by a column-pivoting QR of the dense W; NaN above `maxUnknowns` unknowns.
 double estimatedNu(const solvers::ContactProblem& problem, int maxUnknowns = 1500);
 
 /// The median of `values` (mean of the middle two for an even count; 0 when empty).

@@ -22,7 +22,8 @@ BallChain buildBallChain(int links, double timeStep, const std::string& solver,
     engine::BodyDesc link;
     link.name = "link" + std::to_string(i);
     link.pose = geometry::Pose::translation({(i + 0.5) * kLinkLength, 0, 0});
-    // Capsule r 0.01 m, length 0.1 m (SCENES.md A6): principal inertia about the COM.
+    // Capsule r 0.01 m, length 0.1 m (docs/scene-specifications.md A6): principal inertia about the
+    // COM.
     link.mass = {kLinkMass, Eigen::Vector3d::Zero(),
                  Eigen::Vector3d(4.857143e-6, 7.557143e-5, 7.557143e-5).asDiagonal()};
     const geometry::BodyId body = chain.world.createBody(link);

@@ -1,7 +1,7 @@
 #pragma once
-// The maximal-coordinate chain of SCENES.md A6 (capsule links 0.1 m, 0.1 kg, ball joints,
-// released horizontal), built for any length, solver and stabilization policy: shared by
-// bench/JointChainBench and `coulomb bench --parts joints`.
+// The maximal-coordinate chain of docs/scene-specifications.md A6 (capsule links 0.1 m, 0.1 kg,
+// ball joints, released horizontal), built for any length, solver and stabilization policy: shared
+// by bench/JointChainBench and `coulomb bench --parts joints`.
 #include <coulomb/engine/World.hpp>
 
 #include <string>
@@ -22,7 +22,7 @@ BallChain buildBallChain(int links, double timeStep, const std::string& solver,
 double maxAnchorGap(const BallChain& chain);
 
 /// S = m g L N^2 / 2 [J]: the energy a chain of `links` releases falling from horizontal to
-/// hanging straight (SCENES.md A6 normalises the energy drift by it).
+/// hanging straight (docs/scene-specifications.md A6 normalises the energy drift by it).
 double chainReleasedEnergy(int links);
 
 }  // namespace coulomb::samples

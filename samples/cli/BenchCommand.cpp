@@ -142,7 +142,8 @@ void registerBenchCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   command
       ->add_option("--time-cap", o->timeCap,
-                   "Stop a run when its summed step time exceeds this [s] (SCENES.md section 0)")
+                   "Stop a run when its summed step time exceeds this [s] "
+                   "(docs/scene-specifications.md section 0)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   command->add_option("--time-limit", o->timeLimit,

@@ -26,12 +26,13 @@ struct BenchRecord {
   double iterationsMax = kNaN;
   double residualMean = kNaN;  // common relative residual (aba: |M qdd + h - tau|_inf)
   double residualMax = kNaN;
-  double maxDrift = kNaN;      // [m] largest COM displacement of a dynamic body
-  double energyChange = kNaN;  // [J] E(T) - E(0); joints: divided by S (SCENES.md A6)
-  double jointGap = kNaN;      // [m] largest joint anchor gap
-  double nu = kNaN;            // nu (scenes, islands) or nu-hat (corpus), SOLVERS.md (9.1)
-  std::string status;          // solver status (corpus), "converged" share (nu), ...
-  std::string note;            // "capped: simulated X of Y s", "time limit", ...
+  double maxDrift = kNaN;  // [m] largest COM displacement of a dynamic body
+  double energyChange =
+      kNaN;  // [J] E(T) - E(0); joints: divided by S (docs/scene-specifications.md A6)
+  double jointGap = kNaN;  // [m] largest joint anchor gap
+  double nu = kNaN;    // nu (scenes, islands) or nu-hat (corpus), docs/solver-derivations.md (9.1)
+  std::string status;  // solver status (corpus), "converged" share (nu), ...
+  std::string note;    // "capped: simulated X of Y s", "time limit", ...
 };
 
 enum class BenchSize { Quick, Full };
@@ -44,9 +45,9 @@ struct SuiteOptions {
   std::optional<std::vector<std::string>> scenes;  // replaces the size's scene list
   std::optional<std::vector<std::string>> solvers;  // replaces auto,pgs,bgs,ac_newton
   std::optional<std::uint64_t> steps;  // replaces each scene's (and chain's) step count
-  double timeCap = 10.0;               // [s] summed step time per run (SCENES.md section 0)
-  double timeLimit = 0.0;              // [s] per corpus solve; 0 = the size's
-  std::vector<int> sweepIterations;    // empty = the size's
+  double timeCap = 10.0;   // [s] summed step time per run (docs/scene-specifications.md section 0)
+  double timeLimit = 0.0;  // [s] per corpus solve; 0 = the size's
+  std::vector<int> sweepIterations;  // empty = the size's
   double sweepTolerance = 1e-12;
 };
 

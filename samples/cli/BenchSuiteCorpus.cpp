@@ -1,6 +1,7 @@
 // `coulomb bench --parts corpus`: every solver on every fc3d problem of a folder at a ladder of
 // tolerances (the work-precision curve of each problem: time against the common residual), with
-// nu-hat of each problem (SOLVERS.md section 9) for the iterations-against-nu figure.
+// nu-hat of each problem (docs/solver-derivations.md section 9) for the iterations-against-nu
+// figure.
 #include <coulomb/solvers/SolverRegistry.hpp>
 
 #include <cstdio>

@@ -1,6 +1,6 @@
-// `coulomb bench` parts on joints: joints (the SCENES.md A6 ball chain of 10, 50, 200 links per
-// solver and stabilization policy: ms/step, joint gap, energy change) and aba (ABA on serial
-// snakes of growing length: time per call, |M qdd + h - tau|).
+// `coulomb bench` parts on joints: joints (the docs/scene-specifications.md A6 ball chain of 10,
+// 50, 200 links per solver and stabilization policy: ms/step, joint gap, energy change) and aba
+// (ABA on serial snakes of growing length: time per call, |M qdd + h - tau|).
 #include <coulomb/joints/tree/TreeDynamics.hpp>
 
 #include <array>
@@ -27,7 +27,7 @@ void runJointsPart(const SuiteOptions& o, std::vector<BenchRecord>& out) {
       o.solvers ? *o.solvers : std::vector<std::string>{"pgs!", "bgs!", "ac_newton!"};
   constexpr std::array<joints::StabilizationMethod, 2> kPolicies = {
       joints::StabilizationMethod::PredictedState, joints::StabilizationMethod::Baumgarte};
-  const double h = 0.01;  // SCENES.md A6
+  const double h = 0.01;  // docs/scene-specifications.md A6
   const std::uint64_t steps = o.steps ? *o.steps : (quick ? 100 : 1000);
   BenchProgress progress(
       std::cerr, "joints",
@@ -49,7 +49,8 @@ void runJointsPart(const SuiteOptions& o, std::vector<BenchRecord>& out) {
           if (metrics.capped())
             row.note = "capped: simulated " + std::to_string(chain.world.time()) + " s";
         }
-        row.energyChange /= samples::chainReleasedEnergy(links);  // SCENES.md A6: per S
+        row.energyChange /=
+            samples::chainReleasedEnergy(links);  // docs/scene-specifications.md A6: per S
         BenchRecord rec = recordOf("joints", row, joints::stabilizationMethodName(policy), links,
                                    o.repeats, samples::median(times));
         rec.maxDrift = BenchRecord::kNaN;  // a falling chain: its displacement is no drift

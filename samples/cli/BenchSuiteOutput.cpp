@@ -156,7 +156,9 @@ void writeBenchMarkdown(std::ostream& out, const std::vector<BenchRecord>& recor
              " | " + r.status + " |";
     });
   }
-  sceneTable("joints", "Ball chains (SCENES.md A6, dt 0.01; energy change / S)\n\n| chain");
+  sceneTable(
+      "joints",
+      "Ball chains (docs/scene-specifications.md A6, dt 0.01; energy change / S)\n\n| chain");
   if (present.count("aba")) {
     out << "\n### ABA on serial chains\n\n| chain | links | ms per ABA | ns per link | "
            "abs(M qdd + h - tau) |\n|---|---:|---:|---:|---:|\n";

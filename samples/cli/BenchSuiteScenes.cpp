@@ -1,7 +1,7 @@
 // `coulomb bench` parts on built-in scenes: scenes (each scene x solver, medians over repeats),
 // sweep (iteration caps of each solver alone: the work-precision curve of a scene) and nu
-// (ac_newton alone: iterations of every island solve against its nu, SOLVERS.md (9.1), the
-// analogue of AC11 figure 10 on our scenes).
+// (ac_newton alone: iterations of every island solve against its nu, docs/solver-derivations.md
+// (9.1), the analogue of AC11 figure 10 on our scenes).
 #include <coulomb/geometry/BodyState.hpp>
 
 #include <cmath>

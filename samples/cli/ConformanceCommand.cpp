@@ -1,7 +1,7 @@
 // `coulomb conformance [--cases a,b] [--solvers a,b] [--scale X] [--markdown FILE]`: runs the
-// conformance cases of SCENES.md (samples/conformance) once per solver and prints one row each:
-// verdict, metric against its criterion, ms per step, residual, iterations, fallbacks. The table
-// of docs/conformance.md is this command's --markdown output.
+// conformance cases of docs/scene-specifications.md (samples/conformance) once per solver and
+// prints one row each: verdict, metric against its criterion, ms per step, residual, iterations,
+// fallbacks. The table of docs/conformance.md is this command's --markdown output.
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -57,7 +57,8 @@ void printRow(std::ostream& out, const Row& row) {
 void writeMarkdown(const std::string& path, const std::vector<Row>& rows, double scale) {
   std::ofstream out(path);
   if (!out) throw CommandError("--markdown: cannot write '" + path + "'");
-  out << "| case | SCENES.md | solver | verdict | metric | value | criterion | ms/step | max "
+  out << "| case | docs/scene-specifications.md | solver | verdict | metric | value | criterion | "
+         "ms/step | max "
          "residual "
          "| mean (max) iterations | fallbacks |\n";
   out << "|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -114,18 +115,20 @@ void runConformance(const ConformanceOptions& options) {
 
 void registerConformanceCommand(CLI::App& app) {
   auto options = std::make_shared<ConformanceOptions>();
-  CLI::App* command = app.add_subcommand(
-      "conformance",
-      "Run the conformance cases of SCENES.md (docs/conformance.md) once per solver: verdict, "
-      "metric, ms/step, residual, iterations");
+  CLI::App* command =
+      app.add_subcommand("conformance",
+                         "Run the conformance cases of docs/scene-specifications.md "
+                         "(docs/conformance.md) once per solver: verdict, "
+                         "metric, ms/step, residual, iterations");
   command->add_option("--cases", options->cases,
                       "Comma-separated case names (default: all; --list shows them)");
   command->add_option("--solvers", options->solvers,
                       "Comma-separated solvers (default: auto and each solver alone: pgs!, bgs!, "
                       "ac_newton!, fb_newton!, staggered!, lemke!)");
   command
-      ->add_option("--scale", options->scale,
-                   "Run this fraction of each case's SCENES.md duration (default 1)")
+      ->add_option(
+          "--scale", options->scale,
+          "Run this fraction of each case's docs/scene-specifications.md duration (default 1)")
       ->check(CLI::PositiveNumber);
   command->add_option("--markdown", options->markdown, "Also write the table as Markdown to FILE");
   command->add_flag("--list", options->list, "List the cases and their criteria");

@@ -78,7 +78,7 @@ double SolverTally::meanResidual() const {
 }
 
 bool hasDiverged(const engine::World& world) {
-  constexpr double kLimit = 1000.0;  // [m] and [m/s], SCENES.md section 0
+  constexpr double kLimit = 1000.0;  // [m] and [m/s], docs/scene-specifications.md section 0
   const geometry::BodyState& s = world.state();
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (!s.isDynamic(i)) continue;

@@ -1,8 +1,8 @@
 #pragma once
 // One timed run of a scene, shared by `coulomb run`, `coulomb compare` and `coulomb bench`:
 // the scene with the command line's overrides, the World built from it, and the measurements
-// every command reports (RunMetrics below). Timing follows SCENES.md section 0: each
-// World::step is timed alone (steady clock, metric code excluded) and ms/step is the median
+// every command reports (RunMetrics below). Timing follows docs/scene-specifications.md section 0:
+// each World::step is timed alone (steady clock, metric code excluded) and ms/step is the median
 // after min(20, steps/10) warm-up steps.
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/World.hpp>
@@ -63,7 +63,8 @@ class RunMetrics {
 
   void observe(const engine::World& world, const engine::StepReport& report, double stepSeconds);
 
-  [[nodiscard]] double medianStepMilliseconds() const;  // SCENES.md section 0 rule
+  [[nodiscard]] double medianStepMilliseconds()
+      const;  // docs/scene-specifications.md section 0 rule
   [[nodiscard]] double meanStepMilliseconds() const;
   [[nodiscard]] const std::map<std::string, SolverTally>& solvers() const { return solvers_; }
   [[nodiscard]] SolverTally allSolvers() const;  // the tallies merged
@@ -112,15 +113,16 @@ class RunMetrics {
 };
 
 /// Steps `world` `steps` times, timing each World::step alone; calls `afterStep` (untimed) after
-/// every step. Stops early when the state diverges (SCENES.md section 0: non-finite, |x| > 1000 m,
-/// |v| > 1000 m/s); RunMetrics::diverged() then says so.
-/// Also stops when the summed step time exceeds `timeCapSeconds` (SCENES.md section 0 time cap);
+/// every step. Stops early when the state diverges (docs/scene-specifications.md section 0:
+/// non-finite, |x| > 1000 m, |v| > 1000 m/s); RunMetrics::diverged() then says so. Also stops when
+/// the summed step time exceeds `timeCapSeconds` (docs/scene-specifications.md section 0 time cap);
 /// RunMetrics::capped() then says so.
 void runSteps(engine::World& world, std::uint64_t steps, double timeStep, RunMetrics& metrics,
               const std::function<void(const engine::StepReport&)>& afterStep = {},
               double timeCapSeconds = std::numeric_limits<double>::infinity());
 
-/// True if some dynamic body is non-finite or beyond 1000 m or 1000 m/s (SCENES.md section 0).
+/// True if some dynamic body is non-finite or beyond 1000 m or 1000 m/s
+/// (docs/scene-specifications.md section 0).
 bool hasDiverged(const engine::World& world);
 
 }  // namespace coulomb::cli

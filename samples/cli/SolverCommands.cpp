@@ -103,7 +103,7 @@ void runSolve(const SolveArgs& a) {
     std::string planFields;
     if (registry.find(name)) {
       out = registry.create(name)->solve(problem, options);
-    } else {  // a plan: the chooser's primary and fallbacks (SOLVERS.md section 9)
+    } else {  // a plan: the chooser's primary and fallbacks (docs/solver-derivations.md section 9)
       std::string error;
       const std::optional<solvers::SolverChoice> choice = solvers::parseSolverChoice(name, error);
       if (!choice) throw CommandError("--solver: " + error);

@@ -1,11 +1,11 @@
 #pragma once
 // One scene run once per solver, reduced to one row of figures: what `coulomb compare` prints
 // and `coulomb bench` repeats. Definitions (docs/benchmarks.md "What the columns mean"):
-//   ms/step      median World::step time after min(20, steps/10) warm-up steps (SCENES.md s. 0)
-//   iterations   of the answer applied to each island (mean, max over island solves)
-//   residual     common relative residual e_rel of that answer (mean, max over island solves)
-//   penetration  largest manifold depth over the run [m]
-//   drift        largest |p(t) - p(0)| of any dynamic body's COM over the run [m]: for a scene
+//   ms/step      median World::step time after min(20, steps/10) warm-up steps
+//   (docs/scene-specifications.md s. 0) iterations   of the answer applied to each island (mean,
+//   max over island solves) residual     common relative residual e_rel of that answer (mean, max
+//   over island solves) penetration  largest manifold depth over the run [m] drift        largest
+//   |p(t) - p(0)| of any dynamic body's COM over the run [m]: for a scene
 //                that should rest, how far it did not
 //   energy       E(T) - E(0), E = kinetic + gravitational potential of the dynamic bodies [J]
 //   fallbacks    extra solver attempts over the run (the plan's fallbacks)

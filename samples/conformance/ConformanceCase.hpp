@@ -1,8 +1,8 @@
 #pragma once
-// One conformance case of SCENES.md (issue 8): a built-in scene, a metric and its pass criterion,
-// runnable with any solver. The tests (tests/conformance), `coulomb conformance` and the table of
-// docs/conformance.md all run the same ConformanceCase, so the documented figures are the tested
-// ones.
+// One conformance case of docs/scene-specifications.md (issue 8): a built-in scene, a metric and
+// its pass criterion, runnable with any solver. The tests (tests/conformance), `coulomb
+// conformance` and the table of docs/conformance.md all run the same ConformanceCase, so the
+// documented figures are the tested ones.
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/World.hpp>
 
@@ -16,7 +16,8 @@ namespace coulomb::conformance {
 
 struct CaseOptions {
   std::string solver = "auto";  // WorldSettings::solver for every island ("auto", "pgs", ...)
-  double horizonScale = 1.0;  // fraction of the SCENES.md duration to run (tests under sanitizers)
+  double horizonScale =
+      1.0;  // fraction of the docs/scene-specifications.md duration to run (tests under sanitizers)
 };
 
 /// The outcome of one case with one solver.
@@ -35,7 +36,7 @@ struct CaseRun {
 struct ConformanceCase {
   std::string name;        // "sphere_slide", "box_incline/C_flat_22.5deg", ...
   std::string scene;       // built-in scene it runs (samples/scenes/<scene>.json)
-  std::string section;     // SCENES.md section, e.g. "A1"
+  std::string section;     // docs/scene-specifications.md section, e.g. "A1"
   std::string metricName;  // e.g. "direction error [deg]"
   std::string criterion;   // pass criterion in words, e.g. "< 0.1 deg"
   std::function<CaseRun(const CaseOptions&)> run;
@@ -66,7 +67,8 @@ engine::World buildCaseWorld(const std::string& scene, const CaseOptions& option
 /// Steps in a horizon of `steps` scaled by options.horizonScale (at least 1).
 std::size_t scaledSteps(std::size_t steps, const CaseOptions& options);
 
-/// Every case, in SCENES.md order. Each group lives in its own file (Friction*.cpp, ...).
+/// Every case, in docs/scene-specifications.md order. Each group lives in its own file
+/// (Friction*.cpp, ...).
 const std::vector<ConformanceCase>& allCases();
 /// The case called `name`; throws CoulombError listing the names if there is none.
 const ConformanceCase& findCase(const std::string& name);

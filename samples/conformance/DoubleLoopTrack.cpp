@@ -72,7 +72,8 @@ double TrackProgress::distance(const Eigen::Vector3d& p, double phi) const {
 }
 
 double TrackProgress::update(const Eigen::Vector3d& p) {
-  constexpr double kWindow = 0.5, kOffRails = 0.05;  // [rad], [m] (SCENES.md B11)
+  constexpr double kWindow = 0.5,
+                   kOffRails = 0.05;  // [rad], [m] (docs/scene-specifications.md B11)
   constexpr int kSamples = 200;
   const double lo = std::max(DoubleLoopTrack::phiStart(), phi_ - kWindow);
   const double hi = std::min(track_.phiEnd(), phi_ + kWindow);

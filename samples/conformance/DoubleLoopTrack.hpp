@@ -1,10 +1,11 @@
 #pragma once
-// The track of SCENES.md B11 double_loop (scripts/generate_double_loop.py builds the same rails):
-// midline C(phi) = (A phi + B sin phi, D phi / 2pi, B (1 - cos phi)), phi in [-pi/2, 4pi], then a
-// straight 2 m exit along the tangent at 4pi (here: phi > 4pi continues C linearly with the speed
-// |C'(4pi)|), and the frame t = C'/|C'|, b = normalize(y - (y.t) t), n = t x b. Plus the progress
-// measure of SCENES.md B11 "What to report": s(t), the arc length from phi = 0 of the point of
-// the ball's path C + h n nearest to the ball, followed by continuation.
+// The track of docs/scene-specifications.md B11 double_loop (scripts/generate_double_loop.py builds
+// the same rails): midline C(phi) = (A phi + B sin phi, D phi / 2pi, B (1 - cos phi)), phi in
+// [-pi/2, 4pi], then a straight 2 m exit along the tangent at 4pi (here: phi > 4pi continues C
+// linearly with the speed |C'(4pi)|), and the frame t = C'/|C'|, b = normalize(y - (y.t) t), n = t
+// x b. Plus the progress measure of docs/scene-specifications.md B11 "What to report": s(t), the
+// arc length from phi = 0 of the point of the ball's path C + h n nearest to the ball, followed by
+// continuation.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -35,8 +36,8 @@ class DoubleLoopTrack {
   double phiEnd_ = 0.0;
 };
 
-/// s(t) of SCENES.md B11: phi* = argmin |p - (C + h n)(phi)| over |phi - phi*_prev| <= 0.5; s is
-/// frozen while that distance exceeds 0.05 m (the ball is off the rails).
+/// s(t) of docs/scene-specifications.md B11: phi* = argmin |p - (C + h n)(phi)| over |phi -
+/// phi*_prev| <= 0.5; s is frozen while that distance exceeds 0.05 m (the ball is off the rails).
 class TrackProgress {
  public:
   explicit TrackProgress(const DoubleLoopTrack& track) : track_(track) {}

@@ -1,6 +1,7 @@
-// The friction cases of SCENES.md A1, A2, B5, B6, B7: each runs its built-in scene for the full
-// SCENES.md duration (they are one body and at most 500 steps, so CaseOptions::horizonScale is
-// ignored: every metric is defined at T) and computes the metrics SCENES.md defines.
+// The friction cases of docs/scene-specifications.md A1, A2, B5, B6, B7: each runs its built-in
+// scene for the full docs/scene-specifications.md duration (they are one body and at most 500
+// steps, so CaseOptions::horizonScale is ignored: every metric is defined at T) and computes the
+// metrics docs/scene-specifications.md defines.
 #include "FrictionCases.hpp"
 
 #include "scenes/SceneRegistry.hpp"
@@ -36,7 +37,8 @@ bool near(double value, double target, double tolerance) {
 }
 
 /// The scene with the case's solver at tolerance kCaseTolerance: these cases measure the friction
-/// law to ~1e-9 (SCENES.md "discrete floor"), which the world's default 1e-6 would blur.
+/// law to ~1e-9 (docs/scene-specifications.md "discrete floor"), which the world's default 1e-6
+/// would blur.
 engine::World buildFrictionWorld(const std::string& scene, const CaseOptions& options) {
   engine::io::Scene loaded = scenes::loadBuiltinScene(scene);
   loaded.settings.solve.choice = coulomb::solvers::solverChoice(options.solver);
@@ -90,7 +92,7 @@ MeasuredCase finish(FrictionRun& run, bool passed,
   return measured;
 }
 
-// A1: slide, then roll at 5 v0 / 7 (closed form of SCENES.md A1).
+// A1: slide, then roll at 5 v0 / 7 (closed form of docs/scene-specifications.md A1).
 MeasuredCase sphereSlide(const CaseOptions& options) {
   FrictionRun run("sphere_slide", "sphere", options);
   constexpr double v0 = 2.0, mu = 0.3;
@@ -204,7 +206,7 @@ MeasuredCase spinDecay(const CaseOptions& options) {
                 omegaErr);
 }
 
-// B6: stop, return, roll back (closed forms of SCENES.md B6).
+// B6: stop, return, roll back (closed forms of docs/scene-specifications.md B6).
 MeasuredCase backspin(const CaseOptions& options) {
   FrictionRun run("backspin", "sphere", options);
   constexpr double v0 = 2.0, w0 = 100.0, mu = 0.3, r = 0.1, k = 0.4;

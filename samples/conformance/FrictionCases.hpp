@@ -1,9 +1,10 @@
 #pragma once
-// The friction cases of SCENES.md (A1 sphere_slide, A2 box_incline, B5 spin_decay, B6 backspin,
-// B7 painleve_rod) with every metric SCENES.md defines, so a test can compare each one with its
-// discrete floor. The floors are what an exact velocity-level step gives at dt 0.01 (SCENES.md
-// section 0), recomputed here to full precision by the same reduced recurrences SCENES.md part C
-// describes (one contact: exact clamp; the 4-corner box: exact cone); SCENES.md prints them
+// The friction cases of docs/scene-specifications.md (A1 sphere_slide, A2 box_incline, B5
+// spin_decay, B6 backspin, B7 painleve_rod) with every metric docs/scene-specifications.md defines,
+// so a test can compare each one with its discrete floor. The floors are what an exact
+// velocity-level step gives at dt 0.01 (docs/scene-specifications.md section 0), recomputed here to
+// full precision by the same reduced recurrences docs/scene-specifications.md part C describes (one
+// contact: exact clamp; the 4-corner box: exact cone); docs/scene-specifications.md prints them
 // rounded.
 #include "ConformanceCase.hpp"
 
@@ -13,7 +14,8 @@
 
 namespace coulomb::conformance {
 
-/// A friction case's run plus its SCENES.md metrics by name ("x_err", "first_Pn", ...).
+/// A friction case's run plus its docs/scene-specifications.md metrics by name ("x_err",
+/// "first_Pn", ...).
 struct MeasuredCase {
   CaseRun run;
   std::vector<std::pair<std::string, double>> figures;
@@ -24,7 +26,8 @@ struct MeasuredCase {
 /// Runs the friction case `name` ("sphere_slide", "box_incline/C_flat_22.5deg", ...).
 MeasuredCase measureFrictionCase(const std::string& name, const CaseOptions& options);
 
-/// Discrete floors at dt 0.01 (SCENES.md section 0 "discrete floor"; values of SCENES.md in [ ]).
+/// Discrete floors at dt 0.01 (docs/scene-specifications.md section 0 "discrete floor"; values of
+/// docs/scene-specifications.md in [ ]).
 namespace floors {
 inline constexpr double kSphereSlideXErr = 0.00282138050857794;      // A1 x_err [0.00282138] m
 inline constexpr double kInclineStopDistErr = -0.00494179918450564;  // A2 C [-0.0049418] m

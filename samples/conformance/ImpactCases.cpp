@@ -1,6 +1,7 @@
-// Impact and mass-ratio cases of SCENES.md: A7 newton_cradle (both impact laws), A5 mass_ratio
-// (100kg_on_0.1kg, 1000kg_on_1kg) and B4 mass_tower (light_on_top, heavy_on_top). The analytic
-// answers are copied here from SCENES.md (tests never read the design folder).
+// Impact and mass-ratio cases of docs/scene-specifications.md: A7 newton_cradle (both impact laws),
+// A5 mass_ratio (100kg_on_0.1kg, 1000kg_on_1kg) and B4 mass_tower (light_on_top, heavy_on_top). The
+// analytic answers are copied here from docs/scene-specifications.md (tests never read the design
+// folder).
 #include "ConformanceCase.hpp"
 
 #include "scenes/SceneRegistry.hpp"
@@ -34,7 +35,8 @@ engine::World buildWorldWith(const std::string& scene, const CaseOptions& option
 
 // ---- A7 newton_cradle ----------------------------------------------------------------------
 
-// Final x-velocities of the five balls (SCENES.md A7 metrics v1..v5), KE ratio, off-axis speed.
+// Final x-velocities of the five balls (docs/scene-specifications.md A7 metrics v1..v5), KE ratio,
+// off-axis speed.
 struct CradleFigures {
   std::array<double, 5> v{};
   double energyRatio = 0.0;  // sum 1/2 m v^2 over the initial 0.5 J
@@ -79,8 +81,9 @@ CaseRun runCradlePropagating(const CaseOptions& options) {
 }
 
 // One simultaneous impact over the four contacts (Newton's law on the LCP): impulses
-// (1.6, 1.2, 0.8, 0.4) N s give (-0.6, 0.4, 0.4, 0.4, 0.4) (SCENES.md A7, with a positive
-// contact margin: the 2.8e-17 m gap between balls 4 and 5 is within the touching tolerance).
+// (1.6, 1.2, 0.8, 0.4) N s give (-0.6, 0.4, 0.4, 0.4, 0.4) (docs/scene-specifications.md A7, with a
+// positive contact margin: the 2.8e-17 m gap between balls 4 and 5 is within the touching
+// tolerance).
 CaseRun runCradleSimultaneous(const CaseOptions& options) {
   CaseRun run;
   const CradleFigures f = runCradleWorld(options, ImpactLaw::Simultaneous, run);
@@ -98,7 +101,7 @@ CaseRun runCradleSimultaneous(const CaseOptions& options) {
 // A resting column: ground (slot 0) under boxes in slots 1..n, bottom to top, each 0.2 m tall.
 struct Column {
   std::string scene;
-  std::size_t steps = 0;      // SCENES.md duration at dt 0.01
+  std::size_t steps = 0;      // docs/scene-specifications.md duration at dt 0.01
   std::vector<double> loads;  // [N] analytic normal force under box i (ground first)
 };
 
@@ -115,7 +118,7 @@ double interfaceImpulse(const engine::World& world, std::uint32_t a, std::uint32
 }
 
 struct ColumnFigures {
-  double maxDisplacement = 0.0;   // [m] any box, any sample (SCENES.md max_disp)
+  double maxDisplacement = 0.0;   // [m] any box, any sample (docs/scene-specifications.md max_disp)
   double maxSink = 0.0;           // [m] largest |0.2 - (z_i - z_{i-1})| (box 0: |0.1 - z_0|)
   double maxLoadError = 0.0;      // relative, any interface, any step
   std::vector<double> lastLoads;  // [N] of the last step, ground first
@@ -183,11 +186,11 @@ CaseRun runMassTower(const Column& column, const CaseOptions& options) {
 }  // namespace
 
 void addImpactCases(std::vector<ConformanceCase>& cases) {
-  // SCENES.md A5: normal forces 981.981 N (ground) and 981.0 N (interface); for 1000 kg on 1 kg
-  // the same statics give (1000 + 1) g = 9819.81 N and 1000 g = 9810 N.
+  // docs/scene-specifications.md A5: normal forces 981.981 N (ground) and 981.0 N (interface); for
+  // 1000 kg on 1 kg the same statics give (1000 + 1) g = 9819.81 N and 1000 g = 9810 N.
   const Column ratio100{"mass_ratio_100kg_on_0_1kg", 500, {981.981, 981.0}};
   const Column ratio1000{"mass_ratio_1000kg_on_1kg", 500, {9819.81, 9810.0}};
-  // SCENES.md B4 (ground, 1|2, 2|3, 3|4).
+  // docs/scene-specifications.md B4 (ground, 1|2, 2|3, 3|4).
   const Column light{"mass_tower_light_on_top", 1000, {10898.91, 1088.91, 107.91, 9.81}};
   const Column heavy{"mass_tower_heavy_on_top", 1000, {10898.91, 10889.10, 10791.00, 9810.00}};
   const std::string ratioCriterion = "sink and drift < 1e-6 m, loads within 1e-6";

@@ -1,5 +1,5 @@
-// SCENES.md B11 double_loop: the run (progress, rolling share, Newton iterations per step) and its
-// four conformance cases, one per friction coefficient.
+// docs/scene-specifications.md B11 double_loop: the run (progress, rolling share, Newton iterations
+// per step) and its four conformance cases, one per friction coefficient.
 #include "LoopCases.hpp"
 
 #include "DoubleLoopTrack.hpp"
@@ -20,10 +20,13 @@ namespace {
 
 constexpr double kFacTarget = 1e-20;  // ||f_AC||^2, AC11 section 5.1.5
 constexpr int kNewtonCap = 50;
-constexpr double kStickSpeed = 1e-6;  // [m/s] |u_T| of a sticking contact (SCENES.md B11)
-constexpr double kLoop2End = 13.101;  // [m] arc length of the end of loop 2 (SCENES.md B11)
+constexpr double kStickSpeed =
+    1e-6;  // [m/s] |u_T| of a sticking contact (docs/scene-specifications.md B11)
+constexpr double kLoop2End =
+    13.101;  // [m] arc length of the end of loop 2 (docs/scene-specifications.md B11)
 
-/// ||f_AC(r)||^2 = ||Phi||^2 of SOLVERS.md (5.1), radius (5.2a), rho = 1/lambda_max(sym W_cc).
+/// ||f_AC(r)||^2 = ||Phi||^2 of docs/solver-derivations.md (5.1), radius (5.2a), rho =
+/// 1/lambda_max(sym W_cc).
 double fAcSquared(const solvers::ContactProblem& problem, const Eigen::VectorXd& r,
                   const Eigen::VectorXd& u) {
   const solvers::AlartCurnierFunction function;
@@ -157,11 +160,12 @@ std::string describe(const DoubleLoopRun& r) {
 }
 
 void addLoopCases(std::vector<ConformanceCase>& cases) {
-  // SCENES.md B11 pass: ac_newton < 5 iterations per step, no NaN; mu 1.0 completes both loops
-  // (passes both tops and reaches the end of loop 2 on the rails: a ball that passes the top of
-  // loop 2 in free fall has not completed it), the others pass no loop top (reduced model: 0.1
-  // and 0.3 stay in the first valley, 0.6 leaves the rails before the top of loop 1). s_max
-  // rising with mu is checked across the cases by tests/conformance/DoubleLoopTest.cpp.
+  // docs/scene-specifications.md B11 pass: ac_newton < 5 iterations per step, no NaN; mu 1.0
+  // completes both loops (passes both tops and reaches the end of loop 2 on the rails: a ball that
+  // passes the top of loop 2 in free fall has not completed it), the others pass no loop top
+  // (reduced model: 0.1 and 0.3 stay in the first valley, 0.6 leaves the rails before the top of
+  // loop 1). s_max rising with mu is checked across the cases by
+  // tests/conformance/DoubleLoopTest.cpp.
   for (const double mu : {0.1, 0.3, 0.6, 1.0}) {
     char name[32];
     std::snprintf(name, sizeof name, "double_loop/mu=%.1f", mu);
@@ -177,9 +181,9 @@ void addLoopCases(std::vector<ConformanceCase>& cases) {
                        run.detail = describe(r);
                        const bool loops =
                            completes ? r.loopsDone == 2 && r.sMax >= kLoop2End : r.loopsDone == 0;
-                       // SCENES.md asks for the mean (< 5), not for every step: a step
-                       // where ac_newton stalls counts as kNewtonCap + 1 in the mean and
-                       // is reported as unreached (docs/conformance.md, double loop).
+                       // docs/scene-specifications.md asks for the mean (< 5), not for every step:
+                       // a step where ac_newton stalls counts as kNewtonCap + 1 in the mean and is
+                       // reported as unreached (docs/conformance.md, double loop).
                        run.passed = r.finite && r.newtonMean < 5.0 && loops;
                        return run;
                      }});

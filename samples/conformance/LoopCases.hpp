@@ -1,7 +1,8 @@
 #pragma once
-// SCENES.md B11 double_loop (the Alart-Curnier paper's figure 9, AC11 section 5.1.5): a spinning
-// ball on two rails of static capsules, run at one friction coefficient with every figure
-// SCENES.md asks `samples/double_loop` to report. Shared by the conformance cases
+// docs/scene-specifications.md B11 double_loop (the Alart-Curnier paper's figure 9, AC11
+// section 5.1.5): a spinning ball on two rails of static capsules, run at one friction coefficient
+// with every figure docs/scene-specifications.md asks `samples/double_loop` to report. Shared by
+// the conformance cases
 // ("double_loop/mu=0.1" ...), samples/double_loop.cpp and tests/conformance/DoubleLoopTest.cpp.
 #include "ConformanceCase.hpp"
 
@@ -27,8 +28,8 @@ struct DoubleLoopRun {
   double rollingShare = 0.0;     // steps in which every such contact sticks (|u_T| <= 1e-6 m/s)
   double slidingShare = 0.0;     // the other steps with contact
   // ac_newton on each step's problem, from the step's warm start, counted until
-  // ||f_AC||^2 < 1e-20 (AC11 section 5.1.5; f_AC = -Phi of SOLVERS.md (5.1) with the solver's
-  // spectral rho per contact (5.14)).
+  // ||f_AC||^2 < 1e-20 (AC11 section 5.1.5; f_AC = -Phi of docs/solver-derivations.md (5.1) with
+  // the solver's spectral rho per contact (5.14)).
   double newtonMean = 0.0;
   int newtonMax = 0;
   std::size_t newtonUnreached = 0;  // steps where 50 iterations did not reach 1e-20

@@ -1,7 +1,7 @@
 #pragma once
-// Measurements shared by the structure and stability cases (SCENES.md A3, A4, B1-B3): how far the
-// dynamic bodies moved from their start, the total mechanical energy, the lowest point of any
-// dynamic shape. They read World::state() only, so they never change a run.
+// Measurements shared by the structure and stability cases (docs/scene-specifications.md A3, A4,
+// B1-B3): how far the dynamic bodies moved from their start, the total mechanical energy, the
+// lowest point of any dynamic shape. They read World::state() only, so they never change a run.
 #include <coulomb/engine/World.hpp>
 
 #include <Eigen/Core>
@@ -11,7 +11,8 @@
 
 namespace coulomb::conformance {
 
-/// Tracks ||p - p0|| of every dynamic body's COM (SCENES.md `max_disp`), from the construction.
+/// Tracks ||p - p0|| of every dynamic body's COM (docs/scene-specifications.md `max_disp`), from
+/// the construction.
 class DisplacementTracker {
  public:
   explicit DisplacementTracker(const engine::World& world);

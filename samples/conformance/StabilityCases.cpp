@@ -1,8 +1,9 @@
-// Long-run stability (issue 8 item 5; SCENES.md A3, A4, B1): the towers and pyramids stand for
-// 10 000 steps at dt = 0.01 with sleep off (no box moves more than 1 mm, the energy never rises
-// above its start), and the 1000-box pile settles over 10 000 steps with no NaN, no body below the
-// floor, no box out of the container and a kinetic energy bounded by the energy released.
-// The full horizons take minutes (bench/ConformanceLongRun runs them); tests scale them down.
+// Long-run stability (issue 8 item 5; docs/scene-specifications.md A3, A4, B1): the towers and
+// pyramids stand for 10 000 steps at dt = 0.01 with sleep off (no box moves more than 1 mm, the
+// energy never rises above its start), and the 1000-box pile settles over 10 000 steps with no NaN,
+// no body below the floor, no box out of the container and a kinetic energy bounded by the energy
+// released. The full horizons take minutes (bench/ConformanceLongRun runs them); tests scale them
+// down.
 #include "ConformanceCase.hpp"
 #include "RestMeasures.hpp"
 
@@ -15,7 +16,7 @@ namespace coulomb::conformance {
 namespace {
 
 constexpr std::size_t kLongRunSteps = 10000;      // issue 8 item 5: 10 000 steps at dt = 0.01
-constexpr double kMaxRestingDisplacement = 1e-3;  // [m] SCENES.md A3/A4 goal
+constexpr double kMaxRestingDisplacement = 1e-3;  // [m] docs/scene-specifications.md A3/A4 goal
 // "Energy never grows": a resting stack's energy may rise only by round-off. The bound is the
 // energy of lifting the whole stack by 1e-9 m, far below any physical motion (the 1 mm criterion
 // is 1e6 times larger) and far above the summation round-off of a few hundred bodies.

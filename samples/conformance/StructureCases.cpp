@@ -1,8 +1,8 @@
-// Structures that stand only through friction (issue 8 item 1; SCENES.md B2, B3): the card house
-// stands at mu 0.6 and must collapse at mu 0.2 (static LP: mu_min = 0.3292); the 17-voussoir
-// masonry arch stands at mu 0.6 (crown thrust inside the admissible [1022.8, 2134.2] N, each
-// abutment carrying W/2 = 3852.378 N) and must collapse at mu 0.2 and 0.1 (thrust-line LP:
-// mu_min = 0.3086). One built-in scene per friction coefficient
+// Structures that stand only through friction (issue 8 item 1; docs/scene-specifications.md B2,
+// B3): the card house stands at mu 0.6 and must collapse at mu 0.2 (static LP: mu_min = 0.3292);
+// the 17-voussoir masonry arch stands at mu 0.6 (crown thrust inside the admissible [1022.8,
+// 2134.2] N, each abutment carrying W/2 = 3852.378 N) and must collapse at mu 0.2 and 0.1
+// (thrust-line LP: mu_min = 0.3086). One built-in scene per friction coefficient
 // (scripts/generate_structure_scenes.py).
 #include "ConformanceCase.hpp"
 #include "RestMeasures.hpp"
@@ -15,21 +15,22 @@
 namespace coulomb::conformance {
 namespace {
 
-constexpr std::size_t kSteps = 1000;         // SCENES.md B2, B3: 10 s at dt = 0.01
+constexpr std::size_t kSteps = 1000;  // docs/scene-specifications.md B2, B3: 10 s at dt = 0.01
 constexpr double kStandDisplacement = 1e-3;  // [m] "stands": max_disp < 1 mm over 10 s
 constexpr double kMovedDistance = 1e-3;      // [m] n_moved counts bodies this far from start at T
 constexpr double kCardCollapseDrop = 0.05;   // [m] B2 collapsed: top cards 5 cm lower
 constexpr double kArchCollapseDrop = 0.1;    // [m] B3 collapsed: keystone 0.1 m lower
-// B3 thrust-line LP at mu 0.6 (SCENES.md B3): admissible crown thrust and the abutment load W/2.
+// B3 thrust-line LP at mu 0.6 (docs/scene-specifications.md B3): admissible crown thrust and the
+// abutment load W/2.
 constexpr double kThrustMin = 1022.8;       // [N]
 constexpr double kThrustMax = 2134.2;       // [N]
 constexpr double kAbutmentLoad = 3852.378;  // [N] W/2
-// [-] relative. SCENES.md asks W/2 to 1e-6, but the arch is statically indeterminate: the
-// resultant of each springer-abutment face contact may sit anywhere on that inclined face, and
-// global moment balance gives V_R = W/2 + H dz / L for a shift dz between the two sides (H the
-// thrust, L the span). Admissible solutions measured 1.4e-6 (fb_newton) to 4.3e-4 (auto) off W/2
-// while standing still to 1e-8 m; 1e-3 keeps the check meaningful (a wrong load path is off by
-// tens of percent) without asking the solver for a symmetric answer it need not give.
+// [-] relative. docs/scene-specifications.md asks W/2 to 1e-6, but the arch is statically
+// indeterminate: the resultant of each springer-abutment face contact may sit anywhere on that
+// inclined face, and global moment balance gives V_R = W/2 + H dz / L for a shift dz between the
+// two sides (H the thrust, L the span). Admissible solutions measured 1.4e-6 (fb_newton) to 4.3e-4
+// (auto) off W/2 while standing still to 1e-8 m; 1e-3 keeps the check meaningful (a wrong load path
+// is off by tens of percent) without asking the solver for a symmetric answer it need not give.
 constexpr double kAbutmentTolerance = 1e-3;
 constexpr std::size_t kAveragingSteps = 100;  // "averaged over the last second"
 

@@ -1,6 +1,7 @@
 #pragma once
 // bgs: blocked Gauss-Seidel over contacts with the exact local solve of Algorithm 4.1
-// (SOLVERS.md section 4), the sweep of Algorithm 3.1, omega switched to 0.7 after a stall.
+// (docs/solver-derivations.md section 4), the sweep of Algorithm 3.1, omega switched to 0.7 after a
+// stall.
 #include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/GaussSeidelLoop.hpp>
 #include <coulomb/solvers/bgs/LocalContactSolver.hpp>
@@ -16,7 +17,8 @@ struct BgsOptions {
   // contacts, where exact local solves over-react and cycle (then omegaAfterStall helps).
   double omega = 1.0;
   // [-] omega used after the first stall; 0 = report Stalled at once. Default 0.7: solved
-  // OneObject-i100000 in the prototypes where omega = 1 stays at 1e-3 (SOLVERS.md section 3).
+  // OneObject-i100000 in the prototypes where omega = 1 stays at 1e-3 (docs/solver-derivations.md
+  // section 3).
   double omegaAfterStall = 0.7;
   // [sweeps] stall test window (best residual down by < 1 %). Default 2000, not the 500 of
   // Algorithm 3.1: on the Capsules stacks bgs sits on plateaus for 1000-3000 sweeps and then

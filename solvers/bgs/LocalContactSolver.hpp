@@ -1,5 +1,6 @@
 #pragma once
-// Exact solution of the one-contact problem of blocked Gauss-Seidel (SOLVERS.md (4.1)):
+// Exact solution of the one-contact problem of blocked Gauss-Seidel (docs/solver-derivations.md
+// (4.1)):
 //   find r in R^3 with u = W r + q~ and K* ∋ u + mu ||u_T|| e_N  _|_  r ∈ K,
 // W the contact's 3x3 diagonal block (possibly non-symmetric, tiny or huge), by Algorithm 4.1:
 // closed forms (take-off, frictionless, stick, isotropic slip), a local Alart-Curnier Newton,
@@ -14,7 +15,7 @@ struct LocalContactData {
   Eigen::PartialPivLU<Eigen::Matrix3d> lu;
   bool invertible = false;  // |det| > 1e-12 prod |W_ii| (4.3)
   double rho = 0.0;         // 1/lambda_max(sym W): projection step and error scale (3.3), (4.6)
-  double rhoN = 0.0;        // 1/W_NN (local Newton, SOLVERS.md section 4)
+  double rhoN = 0.0;        // 1/W_NN (local Newton, docs/solver-derivations.md section 4)
   double rhoT = 0.0;        // 1/lambda_max(sym W_TT)
   static LocalContactData from(const Eigen::Matrix3d& W);
 };

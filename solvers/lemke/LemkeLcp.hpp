@@ -1,6 +1,6 @@
 #pragma once
-// Lemke's complementary pivoting on a dense LCP (SOLVERS.md Algorithm 7.1; Cottle, Pang, Stone,
-// The Linear Complementarity Problem, 1992, section 4.4):
+// Lemke's complementary pivoting on a dense LCP (docs/solver-derivations.md Algorithm 7.1; Cottle,
+// Pang, Stone, The Linear Complementarity Problem, 1992, section 4.4):
 //   find z >= 0 with w = M z + b >= 0 and z^T w = 0,
 // covering vector d = (1, ..., 1), tableau [b | I | -M | -d], lexicographic ratio test on the rows
 // of B^-1 (the anti-cycling rule that makes every pivot strictly decrease the lexicographic
@@ -16,15 +16,15 @@
 namespace coulomb::solvers {
 
 enum class LcpStatus {
-  Solved,            // z0 left the basis (or was negligible): z solves the LCP
-  Ray,               // secondary ray: no blocking row for the entering column (SOLVERS.md (7.7))
+  Solved,  // z0 left the basis (or was negligible): z solves the LCP
+  Ray,  // secondary ray: no blocking row for the entering column (docs/solver-derivations.md (7.7))
   PivotLimit,        // maxPivots reached (cycling or a too small limit)
   NumericalFailure,  // non-finite tableau entry
 };
 const char* lcpStatusName(LcpStatus status);
 
 struct LemkeSettings {
-  // [pivots] 0 = max(50, 10 size) (SOLVERS.md 7, "Floating-point safeguards").
+  // [pivots] 0 = max(50, 10 size) (docs/solver-derivations.md 7, "Floating-point safeguards").
   int maxPivots = 0;
   // Lexicographic tie-breaking on B^-1 (default). Off = ties go to the smallest row index, the
   // textbook rule that can cycle on degenerate problems (kept for the test that shows it).

@@ -211,7 +211,7 @@ void LemkeSolver::solvePrepared(const PreparedProblem& p, const SolveContext& co
     case LcpStatus::Ray:
       report.status = SolverStatus::Stalled;
       msg << "; RAY TERMINATION: no solution along this path (infeasible bias on a null "
-             "direction of W, SOLVERS.md (7.7)); last basis returned";
+             "direction of W, docs/solver-derivations.md (7.7)); last basis returned";
       break;
     case LcpStatus::PivotLimit:
       report.status = SolverStatus::MaxIterations;

@@ -99,7 +99,7 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
     return;
   }
   runNonsmoothNewton(p, function, options_.newton, context, budget, r, report, &workspace_);
-  // Stall restart (hybrid (b) inside the solver, SOLVERS.md section 5; Siconos'
+  // Stall restart (hybrid (b) inside the solver, docs/solver-derivations.md section 5; Siconos'
   // NSN_AND_PLI_NSN_LOOP): a stalled Newton sits in a local minimum of psi = 1/2 ||Phi||^2 that
   // is no solution, typically on the kink ||y_T|| = delta of one contact, where the Newton
   // directions of both sides cross the kink and raise psi (docs/solvers.md, "ac_newton stall

@@ -1,8 +1,8 @@
 #pragma once
 // ac_newton: the global Alart-Curnier nonsmooth Newton of AC11 (Bertails-Descoubes et al., ACM TOG
-// 30(1) 2011, section 4, Algorithms 1-2) on the reduced form, SOLVERS.md section 5, with the
-// residual-scaled regularization (5.8) for redundant contacts and, when plain Newton stalls, the
-// proximal-point outer loop (5.9) around the same Newton.
+// 30(1) 2011, section 4, Algorithms 1-2) on the reduced form, docs/solver-derivations.md section 5,
+// with the residual-scaled regularization (5.8) for redundant contacts and, when plain Newton
+// stalls, the proximal-point outer loop (5.9) around the same Newton.
 #include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/bgs/BgsSolver.hpp>
 #include <coulomb/solvers/newton/NewtonFunction.hpp>
@@ -18,8 +18,8 @@ struct AcNewtonOptions {
   // Radius of the friction disk: (5.2a) mu [y_N]_+ (default: AC91 and Siconos' default) or
   // (5.2b) mu r_N.
   AlartCurnierFunction::Radius radius = AlartCurnierFunction::Radius::PositivePart;
-  // [sweeps] of bgs before Newton (hybrid start (a) of SOLVERS.md section 5). Default 0: on the
-  // corpus it did not rescue the hard cases, whose obstacle is the singular J.
+  // [sweeps] of bgs before Newton (hybrid start (a) of docs/solver-derivations.md section 5).
+  // Default 0: on the corpus it did not rescue the hard cases, whose obstacle is the singular J.
   int hybridSweeps = 0;
   // When Newton stalls, continue with the proximal point method (5.9) from the best iterate:
   // r_{k+1} solves FC(W + s_k I, q - s_k r_k) by the same Newton. Default on: it solved the
@@ -39,8 +39,8 @@ struct AcNewtonOptions {
   // Run the proximal-point loop (5.9) from the start instead of after a stall: the `prox` entry of
   // the registry (Siconos' PROX). Default off: on well-posed problems plain Newton is faster.
   bool proximalFromStart = false;
-  // [-] first proximal shift as a multiple of mean_i W_ii (SOLVERS.md (5.9), scale-aware
-  // version of Siconos' absolute 1e4).
+  // [-] first proximal shift as a multiple of mean_i W_ii (docs/solver-derivations.md (5.9),
+  // scale-aware version of Siconos' absolute 1e4).
   double proximalInitialShift = 1.0;
   // [Newton iterations] cap per proximal subproblem.
   int proximalInnerIterations = 50;

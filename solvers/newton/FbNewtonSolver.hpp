@@ -1,9 +1,10 @@
 #pragma once
 // fb_newton: the global nonsmooth Newton of runNonsmoothNewton on the Fischer-Burmeister function
-// for second-order cones (SOLVERS.md section 6), De Saxce formulation (6.1). It shares the loop,
-// the generalized Jacobian J = A W + B, the row elimination (5.7), the regularization (5.8) and
-// both line searches with ac_newton; only the per-contact function differs. Default line search:
-// Armijo (5.11), well founded because the FB merit is C^1 (Chen, Tseng, Math. Prog. 104 2005).
+// for second-order cones (docs/solver-derivations.md section 6), De Saxce formulation (6.1). It
+// shares the loop, the generalized Jacobian J = A W + B, the row elimination (5.7), the
+// regularization (5.8) and both line searches with ac_newton; only the per-contact function
+// differs. Default line search: Armijo (5.11), well founded because the FB merit is C^1 (Chen,
+// Tseng, Math. Prog. 104 2005).
 #include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/newton/NonsmoothNewton.hpp>
 

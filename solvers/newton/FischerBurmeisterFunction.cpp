@@ -95,7 +95,8 @@ void FischerBurmeisterFunction::contact(const Eigen::Vector3d& r, const Eigen::V
   A.setZero();
   B.setZero();
   const double rho = rhoN;
-  if (mu < 1e-6) {  // frictionless: scalar FB on (r_N, rho u_N), Phi_T = r_T (SOLVERS.md 6)
+  if (mu < 1e-6) {  // frictionless: scalar FB on (r_N, rho u_N), Phi_T = r_T
+                    // (docs/solver-derivations.md 6)
     double da = 0, db = 0;
     scalarFischerBurmeister(r[0], rho * u[0], phi[0], da, db);
     B(0, 0) = da;

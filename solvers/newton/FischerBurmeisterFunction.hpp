@@ -1,11 +1,13 @@
 #pragma once
-// Fischer-Burmeister function for second-order cones (SOLVERS.md section 6; Fukushima, Luo, Tseng,
-// SIAM J. Optim. 12(2) 2002) as a NewtonFunction: per contact, with the De Saxce mapping (6.1)
+// Fischer-Burmeister function for second-order cones (docs/solver-derivations.md section 6;
+// Fukushima, Luo, Tseng, SIAM J. Optim. 12(2) 2002) as a NewtonFunction: per contact, with the De
+// Saxce mapping (6.1)
 //   x = (mu r_N, r_T),  y = rho (u_N + mu ||u_T||, mu u_T),  Phi_c = x + y - sqrt(x o x + y o y)
 // (Jordan product (6.2), spectral square root (6.3)), whose zeros are exactly the Coulomb law
 // (6.4). The small eigenvalue is computed without cancellation (6.5); the Jacobian blocks are
 // (6.6)-(6.7), smoothed at degenerate points (6.6c). mu < 1e-6: scalar FB on the normal and
-// Phi_T = r_T. Scalar rows keep the natural map of NewtonFunction (SOLVERS.md section 10).
+// Phi_T = r_T. Scalar rows keep the natural map of NewtonFunction (docs/solver-derivations.md
+// section 10).
 #include <coulomb/solvers/newton/NewtonFunction.hpp>
 
 namespace coulomb::solvers {

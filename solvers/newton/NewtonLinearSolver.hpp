@@ -1,7 +1,7 @@
 #pragma once
-// The linear solve of one nonsmooth Newton step (SOLVERS.md (5.7)-(5.8)): J_RR x = rhs with
-// J = A (W + sigma I) + B restricted to the rows R that are not unit rows (the eliminated ones).
-// J_RR has W's block sparsity (a tower is block-tridiagonal in body order), so above
+// The linear solve of one nonsmooth Newton step (docs/solver-derivations.md (5.7)-(5.8)): J_RR x =
+// rhs with J = A (W + sigma I) + B restricted to the rows R that are not unit rows (the eliminated
+// ones). J_RR has W's block sparsity (a tower is block-tridiagonal in body order), so above
 // `denseThreshold` kept rows, when W is not nearly dense, it is assembled straight into a
 // compressed sparse matrix and factorized by Eigen's supernodal SparseLU with the COLAMD
 // fill-reducing column ordering. The pattern of J_RR depends only on W's block structure and on R:

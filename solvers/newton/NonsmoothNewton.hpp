@@ -1,8 +1,8 @@
 #pragma once
 // The global nonsmooth Newton loop on Phi(r) = 0 for any per-block NewtonFunction (Algorithm 5.1
-// of SOLVERS.md on the reduced form, unknown r only): generalized Jacobian J = A W + B (5.5),
-// rows with J_i = e_i eliminated (5.7), the residual-scaled shift J_sigma = A (W + sigma I) + B
-// (5.8) that keeps redundant contacts (rank-deficient W) solvable, dense or sparse LU,
+// of docs/solver-derivations.md on the reduced form, unknown r only): generalized Jacobian J = A W
+// + B (5.5), rows with J_i = e_i eliminated (5.7), the residual-scaled shift J_sigma = A (W + sigma
+// I) + B (5.8) that keeps redundant contacts (rank-deficient W) solvable, dense or sparse LU,
 // Goldstein-Price (Algorithm 5.2) or Armijo (5.11) line search, stopping by (5.12) on the common
 // residual.
 #include <coulomb/solvers/PreparedProblem.hpp>

@@ -1,6 +1,6 @@
 #pragma once
-// pgs: projected Gauss-Seidel / PSOR with the exact per-contact cone (SOLVERS.md section 3),
-// never a box or a pyramid.
+// pgs: projected Gauss-Seidel / PSOR with the exact per-contact cone (docs/solver-derivations.md
+// section 3), never a box or a pyramid.
 #include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/GaussSeidelLoop.hpp>
 

@@ -1,7 +1,8 @@
-// SCENES.md B11 double_loop, shortened to its first 0.4 s (the slip phase, where the spin turns
-// into forward motion; the full 5 s runs are in docs/conformance.md and `sample_double_loop`):
-// more friction carries the ball further at every mu step, the state stays finite, and ac_newton
-// reaches ||f_AC||^2 < 1e-20 (AC11 section 5.1.5) at every step. Plus the track measure itself.
+// docs/scene-specifications.md B11 double_loop, shortened to its first 0.4 s (the slip phase, where
+// the spin turns into forward motion; the full 5 s runs are in docs/conformance.md and
+// `sample_double_loop`): more friction carries the ball further at every mu step, the state stays
+// finite, and ac_newton reaches ||f_AC||^2 < 1e-20 (AC11 section 5.1.5) at every step. Plus the
+// track measure itself.
 #include <gtest/gtest.h>
 
 #include "conformance/DoubleLoopTrack.hpp"
@@ -24,7 +25,8 @@ constexpr std::size_t kSteps = 10;  // ASan/UBSan: 5-10x slower
 constexpr std::size_t kSteps = 40;  // 0.4 s: ~0.5 s per mu in Release
 #endif
 
-// SCENES.md B11: arc lengths from phi = 0 of the loop tops, the loop ends and the track end.
+// docs/scene-specifications.md B11: arc lengths from phi = 0 of the loop tops, the loop ends and
+// the track end.
 TEST(DoubleLoopTrack, ArcLengthsMatchScenesMd) {
   const DoubleLoopTrack track;
   constexpr double pi = std::numbers::pi;
@@ -100,8 +102,9 @@ Progress progressOf(double mu, bool elasticTurning, std::size_t steps) {
 // Issue 8: the energy the inelastic step loses on the curved rails (1/2 m v^2 theta^2 per step,
 // theta = v h / R) made mu = 1.0 fall just before the top of loop 2 at dt 0.01 (s_max 9.94 m);
 // elastic turning (ContactSettings::elasticTurning, on in the scene file) reflects the approach
-// the turning of the rails causes, and the ball completes both loops as SCENES.md's reduced model
-// stepped at 0.01 s does (threshold 176.4 rad/s < 180). The end of loop 2 is s = 13.101 m.
+// the turning of the rails causes, and the ball completes both loops as
+// docs/scene-specifications.md's reduced model stepped at 0.01 s does (threshold 176.4 rad/s <
+// 180). The end of loop 2 is s = 13.101 m.
 TEST(DoubleLoop, Mu1CompletesBothLoopsAtDt001OnlyWithElasticTurning) {
 #ifdef COULOMB_SANITIZE
   GTEST_SKIP() << "3.5 s of the scene: too slow under the sanitizers";
@@ -115,8 +118,8 @@ TEST(DoubleLoop, Mu1CompletesBothLoopsAtDt001OnlyWithElasticTurning) {
   EXPECT_LT(off.sMax, 13.101);
 }
 
-// SCENES.md B11: mu 0.6 needs 186.8 rad/s (model stepped at 0.01 s), more than the 180 given, and
-// leaves the rails before the top of loop 1, elastic turning or not.
+// docs/scene-specifications.md B11: mu 0.6 needs 186.8 rad/s (model stepped at 0.01 s), more than
+// the 180 given, and leaves the rails before the top of loop 1, elastic turning or not.
 TEST(DoubleLoop, Mu06StillLeavesTheRailsBeforeLoop1Top) {
 #ifdef COULOMB_SANITIZE
   GTEST_SKIP() << "2 s of the scene: too slow under the sanitizers";

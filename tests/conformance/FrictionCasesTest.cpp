@@ -1,8 +1,9 @@
-// The friction cases of SCENES.md (A1, A2, B5, B6, B7; samples/conformance/FrictionCases.cpp):
-// every case passes its SCENES.md criterion with `auto`; the exact solvers (ac_newton, fb_newton)
-// reproduce the discrete floors of SCENES.md to ~1e-9, which shows that the friction law (the
-// exact Coulomb cone), not luck, gives the answer; pgs and bgs pass where an exact per-contact
-// projection suffices. Every case is one body and at most 500 steps (< 0.1 s each).
+// The friction cases of docs/scene-specifications.md (A1, A2, B5, B6, B7;
+// samples/conformance/FrictionCases.cpp): every case passes its docs/scene-specifications.md
+// criterion with `auto`; the exact solvers (ac_newton, fb_newton) reproduce the discrete floors of
+// docs/scene-specifications.md to ~1e-9, which shows that the friction law (the exact Coulomb
+// cone), not luck, gives the answer; pgs and bgs pass where an exact per-contact projection
+// suffices. Every case is one body and at most 500 steps (< 0.1 s each).
 #include <gtest/gtest.h>
 
 #include "conformance/FrictionCases.hpp"
@@ -62,8 +63,8 @@ INSTANTIATE_TEST_SUITE_P(Solvers, FrictionCase,
                            return testName(std::get<0>(info.param) + "_" + std::get<1>(info.param));
                          });
 
-// The discrete floors (FrictionCases.hpp `floors`, SCENES.md's values recomputed to full
-// precision) to ~1e-9 with an exact solver, with no fallback.
+// The discrete floors (FrictionCases.hpp `floors`, docs/scene-specifications.md's values recomputed
+// to full precision) to ~1e-9 with an exact solver, with no fallback.
 class DiscreteFloor : public ::testing::TestWithParam<std::string> {};
 
 constexpr double kFloorTolerance = 1e-9;
@@ -113,7 +114,8 @@ TEST_P(DiscreteFloor, ExactSolverReproducesIt) {
     const MeasuredCase m = measure("painleve_rod/mu=1.0", solver);
     EXPECT_NEAR(m.figure("first_Pn"), floors::kRodSlidePn, kFloorTolerance);
     EXPECT_NEAR(m.figure("first_Pt"), floors::kRodSlidePn, kFloorTolerance);
-    EXPECT_LT(m.figure("foot_slip_after_1"), -0.4);  // still sliding (SCENES.md: -0.40680 m/s)
+    EXPECT_LT(m.figure("foot_slip_after_1"),
+              -0.4);  // still sliding (docs/scene-specifications.md: -0.40680 m/s)
   }
   {
     const MeasuredCase m = measure("painleve_rod/mu=1.5", solver);

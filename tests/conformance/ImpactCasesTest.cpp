@@ -1,7 +1,8 @@
-// SCENES.md A5 mass_ratio, A7 newton_cradle and B4 mass_tower (samples/conformance/ImpactCases):
-// every case passes with `auto`; the cradle gives (0, 0, 0, 0, 1) with propagating impacts and
-// the LCP answer (-0.6, 0.4, 0.4, 0.4, 0.4) with the simultaneous law; the exact solvers give the
-// analytic interface loads to 1e-9. The analytic figures are copied from SCENES.md.
+// docs/scene-specifications.md A5 mass_ratio, A7 newton_cradle and B4 mass_tower
+// (samples/conformance/ImpactCases): every case passes with `auto`; the cradle gives (0, 0, 0, 0,
+// 1) with propagating impacts and the LCP answer (-0.6, 0.4, 0.4, 0.4, 0.4) with the simultaneous
+// law; the exact solvers give the analytic interface loads to 1e-9. The analytic figures are copied
+// from docs/scene-specifications.md.
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
@@ -19,7 +20,8 @@ using namespace coulomb;
 namespace {
 
 #ifdef COULOMB_SANITIZE
-constexpr double kHorizon = 0.2;  // ASan/UBSan run 3-5x slower: 1/5 of every SCENES.md duration
+constexpr double kHorizon =
+    0.2;  // ASan/UBSan run 3-5x slower: 1/5 of every docs/scene-specifications.md duration
 #else
 constexpr double kHorizon = 1.0;
 #endif
@@ -55,8 +57,9 @@ TEST(ImpactCases, EveryCasePassesWithAuto) {
   }
 }
 
-// SCENES.md section 0: bodies placed exactly touching get their contacts from the first step.
-// Balls 2-5 touch (balls 4 and 5 are 2.8e-17 m apart: 0.1 * 3 = 0.30000000000000004).
+// docs/scene-specifications.md section 0: bodies placed exactly touching get their contacts from
+// the first step. Balls 2-5 touch (balls 4 and 5 are 2.8e-17 m apart: 0.1 * 3 =
+// 0.30000000000000004).
 TEST(ImpactCases, TouchingBallsHaveContactsFromTheFirstStep) {
   engine::World world = cradle(engine::ImpactLaw::Propagating);
   world.step();
@@ -78,7 +81,7 @@ TEST(ImpactCases, PropagatingCradleSendsTheLastBallOff) {
   }
 }
 
-// The simultaneous law on the same scene gives SCENES.md's LCP answer: impulses
+// The simultaneous law on the same scene gives docs/scene-specifications.md's LCP answer: impulses
 // (1.6, 1.2, 0.8, 0.4) N s, velocities (-0.6, 0.4, 0.4, 0.4, 0.4); momentum and energy kept.
 // Exact solvers to 1e-9.
 TEST(ImpactCases, SimultaneousCradleGivesTheLcpAnswer) {
@@ -99,9 +102,9 @@ TEST(ImpactCases, SimultaneousCradleGivesTheLcpAnswer) {
 
 // Without the touching tolerance the 2.8e-17 m gap between balls 4 and 5 is a speculative gap.
 // Once, ball 4 closed it plastically instead of passing the impact on and the last ball got half
-// of the momentum (the failure SCENES.md A7 describes). A speculative gap that closes within the
-// step is now an impact at the moment it closes (ImpactPropagation.cpp, ContactRowsEmitter.cpp),
-// so the impact passes on even with a zero tolerance.
+// of the momentum (the failure docs/scene-specifications.md A7 describes). A speculative gap that
+// closes within the step is now an impact at the moment it closes (ImpactPropagation.cpp,
+// ContactRowsEmitter.cpp), so the impact passes on even with a zero tolerance.
 TEST(ImpactCases, RoundingGapClosedWithinTheStepStillPassesTheImpactOn) {
   engine::World world = cradle(engine::ImpactLaw::Propagating, "auto", 0.0);
   const std::array<double, 5> v = velocitiesAfter(world, 100);
@@ -111,7 +114,7 @@ TEST(ImpactCases, RoundingGapClosedWithinTheStepStillPassesTheImpactOn) {
 
 namespace {
 
-// [N] analytic normal forces under each box, ground first (SCENES.md A5, B4).
+// [N] analytic normal forces under each box, ground first (docs/scene-specifications.md A5, B4).
 struct Column {
   const char* scene;
   std::vector<double> loads;

@@ -1,7 +1,8 @@
-// The jointed built-in scenes of SCENES.md (A6 chain, B8 pendulum, B9 double_pendulum, B10
-// four_bar) and the rope bridge load from samples/scenes and meet the pass criteria that the
-// engine meets today; the others are measured and printed (docs/tuning.md has the figures).
-// Numbers are copied from SCENES.md (tests never read the design folder).
+// The jointed built-in scenes of docs/scene-specifications.md (A6 chain, B8 pendulum, B9
+// double_pendulum, B10 four_bar) and the rope bridge load from samples/scenes and meet the pass
+// criteria that the engine meets today; the others are measured and printed (docs/tuning.md has the
+// figures). Numbers are copied from docs/scene-specifications.md (tests never read the design
+// folder).
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 
@@ -62,7 +63,8 @@ Eigen::Vector3d point(const engine::World& world, const char* body, const Eigen:
   return world.pose(world.findBody(body)).apply(local);
 }
 
-/// Mean of t_{i+2} - t_i over the sign changes `crossings` (SCENES.md B8 "period_rel_err").
+/// Mean of t_{i+2} - t_i over the sign changes `crossings` (docs/scene-specifications.md B8
+/// "period_rel_err").
 double periodFrom(const std::vector<double>& crossings) {
   double sum = 0.0;
   int n = 0;
@@ -84,7 +86,7 @@ TEST(JointScenes, EveryJointedSceneLoadsWithItsJoints) {
   }
 }
 
-// SCENES.md B8 maximal: gap < 1e-4 m; period (2.369025573 s) and drift reported.
+// docs/scene-specifications.md B8 maximal: gap < 1e-4 m; period (2.369025573 s) and drift reported.
 TEST(JointScenes, PendulumStaysClosedAndSwingsWithTheEllipticPeriod) {
   Loaded scene = load("pendulum");
   constexpr double kPeriod = 2.369025573;  // [s] 4 sqrt(l_eq/g) K(1/sqrt 2), l_eq = 1.001 m
@@ -107,7 +109,7 @@ TEST(JointScenes, PendulumStaysClosedAndSwingsWithTheEllipticPeriod) {
   EXPECT_LT(drift, 0.05);
 }
 
-// SCENES.md B9 release_horizontal: gaps < 1e-4 m; energy (S = 9.81 J) reported.
+// docs/scene-specifications.md B9 release_horizontal: gaps < 1e-4 m; energy (S = 9.81 J) reported.
 TEST(JointScenes, DoublePendulumStaysClosedAndKeepsItsEnergy) {
   Loaded scene = load("double_pendulum");
   double gap = 0.0, drift = 0.0;
@@ -124,10 +126,10 @@ TEST(JointScenes, DoublePendulumStaysClosedAndKeepsItsEnergy) {
 
 namespace {
 
-/// SCENES.md B10 open branch of the Freudenstein equation K1 cos t4 - K2 cos t2 + K3 =
-/// cos(t2 - t4), K1 = d/a = 2.5, K2 = d/c = 1.25, K3 = (a^2 - b^2 + c^2 + d^2)/(2ac) = 0.5625.
-/// (SCENES.md prints K3 = 0.1875; 0.36 / 0.64 = 0.5625 is the value that its initial pose,
-/// theta4 = 80.256912829 deg at theta2 = 90 deg, satisfies.)
+/// docs/scene-specifications.md B10 open branch of the Freudenstein equation K1 cos t4 - K2 cos t2
+/// + K3 = cos(t2 - t4), K1 = d/a = 2.5, K2 = d/c = 1.25, K3 = (a^2 - b^2 + c^2 + d^2)/(2ac) =
+/// 0.5625. (docs/scene-specifications.md prints K3 = 0.1875; 0.36 / 0.64 = 0.5625 is the value that
+/// its initial pose, theta4 = 80.256912829 deg at theta2 = 90 deg, satisfies.)
 double openBranchTheta4(double theta2) {
   constexpr double k1 = 2.5, k2 = 1.25, k3 = 0.5625;
   const double a = std::cos(theta2) - k1 - k2 * std::cos(theta2) + k3;
@@ -148,7 +150,7 @@ struct FourBarRun {
 
 FourBarRun runFourBar(const std::string& name, int steps) {
   Loaded scene = load(name);
-  constexpr double kE0 = 10.874004;  // [J] SCENES.md B10, datum z = 0
+  constexpr double kE0 = 10.874004;  // [J] docs/scene-specifications.md B10, datum z = 0
   FourBarRun run;
   for (int k = 0; k <= steps; ++k) {
     if (k > 0) scene.world.step();
@@ -168,8 +170,8 @@ FourBarRun runFourBar(const std::string& name, int steps) {
 
 }  // namespace
 
-// SCENES.md B10 pass: max_loop_gap < 1e-4 m and theta4_err < 1e-4 rad at dt 0.01, here over
-// 10 000 steps; four hinges give 3 redundant rows (a singular Delassus matrix).
+// docs/scene-specifications.md B10 pass: max_loop_gap < 1e-4 m and theta4_err < 1e-4 rad at dt
+// 0.01, here over 10 000 steps; four hinges give 3 redundant rows (a singular Delassus matrix).
 TEST(JointScenes, FourBarWithRedundantHingesFollowsFreudenstein) {
   const FourBarRun run = runFourBar("four_bar", 10000 / kSanitizeDivisor);
   EXPECT_LT(run.loopGap, 1e-4);
@@ -183,9 +185,9 @@ TEST(JointScenes, FourBarRssrFollowsFreudenstein) {
   EXPECT_LT(run.theta4Error, 1e-4);
 }
 
-// SCENES.md A6 maximal at dt 0.01, 10 s: gap and energy (S = m g L N^2 / 2) measured and printed;
-// the asserted bounds are what the engine meets today (docs/tuning.md: the target is gap < 1e-4 m
-// and loss < 10 %).
+// docs/scene-specifications.md A6 maximal at dt 0.01, 10 s: gap and energy (S = m g L N^2 / 2)
+// measured and printed; the asserted bounds are what the engine meets today (docs/tuning.md: the
+// target is gap < 1e-4 m and loss < 10 %).
 TEST(JointScenes, ChainsStayConnected) {
   for (const auto& [name, links] : {std::pair{"chain_10", 10}, std::pair{"chain_50", 50}}) {
     Loaded scene = load(name);
@@ -203,9 +205,10 @@ TEST(JointScenes, ChainsStayConnected) {
         "%s dt 0.01, %d steps: max_joint_gap %.2e m, mean of max gap %.2e, "
         "energy_drift_end %.3f\n",
         name, steps, gap, gapSum / steps, drift);
-    // SCENES.md A6's gap target is met (the predicted-state correction closes every step); its
-    // energy target (loss < 10 %) is not: chain_10 loses ~60-70 % like the peers (57-90 %),
-    // chain_50 ~36 % (peers tear). The energy bounds are the measured figures with a margin.
+    // docs/scene-specifications.md A6's gap target is met (the predicted-state correction closes
+    // every step); its energy target (loss < 10 %) is not: chain_10 loses ~60-70 % like the peers
+    // (57-90 %), chain_50 ~36 % (peers tear). The energy bounds are the measured figures with a
+    // margin.
     EXPECT_LT(gap, 1e-4) << name;
     EXPECT_GT(drift, links == 10 ? -0.85 : -0.5) << name << " lost more than measured";
     EXPECT_LT(drift, 0.1) << name << " gained energy";

@@ -1,6 +1,7 @@
 // The same pendulum in reduced coordinates (a one-link tree, ABA) and in maximal coordinates (a
 // free body on a ball joint, predicted-state correction) follows the same trajectory
-// (issue 10 item 6; SCENES.md B8: 1 kg bob, 1 m, released horizontal, period 2.369025573 s).
+// (issue 10 item 6; docs/scene-specifications.md B8: 1 kg bob, 1 m, released horizontal,
+// period 2.369025573 s).
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 

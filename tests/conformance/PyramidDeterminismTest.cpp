@@ -1,5 +1,6 @@
-// SCENES.md A4: the 55-box pyramid run twice from scratch gives bit-identical states after every
-// step (golden rule 7: no unordered containers, no threads, no time-dependent choices in a step).
+// docs/scene-specifications.md A4: the 55-box pyramid run twice from scratch gives bit-identical
+// states after every step (golden rule 7: no unordered containers, no threads, no time-dependent
+// choices in a step).
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 

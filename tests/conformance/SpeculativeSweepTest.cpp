@@ -1,6 +1,6 @@
 // Velocity-swept speculative margins (geometry/SweptMargin.hpp, docs/collision.md) and the
 // restitution law of speculative points (engine/ContactRowsEmitter.cpp), the fix of the box pile
-// sinking into its floor (SCENES.md B1, docs/conformance.md):
+// sinking into its floor (docs/scene-specifications.md B1, docs/conformance.md):
 // - tilted boxes arriving at ~3 cm per step (6x the fixed 5 mm margin) onto the floor and onto
 //   each other: no corner below -5 mm (the pile's criterion), no overlap deeper than 5 mm, no box
 //   through another. With the fixed margin alone (speculativeSweep = 0) the same drop fails,
@@ -29,8 +29,9 @@ using namespace coulomb;
 
 namespace {
 
-constexpr double kH = 0.01;              // [s] SCENES.md dt
-constexpr double kHalf = 0.1;            // [m] half side of the 0.2 m cubes (SCENES.md box(0.1, m))
+constexpr double kH = 0.01;  // [s] docs/scene-specifications.md dt
+constexpr double kHalf =
+    0.1;  // [m] half side of the 0.2 m cubes (docs/scene-specifications.md box(0.1, m))
 constexpr double kCornerFloor = -0.005;  // [m] the pile's criterion (docs/conformance.md)
 constexpr double kMaxOverlap = 0.005;    // [m] deepest manifold point allowed
 
@@ -115,11 +116,11 @@ DropResult dropBoxes(double sweep) {
   return result;
 }
 
-// Two columns of the 1000-box pile (SCENES.md B1: boxes i = ix + 10 iy + 100 iz of columns
-// (ix, iy) = (6, 4) and (7, 4), iz = 0..9, yawed by the golden angle and tilted by up to 0.1 rad)
-// fall onto the floor, each box landing on the one below at 2-5 m/s. Boxes stacked face on face
-// with a small relative tilt and yaw have edge-cross axes a few degrees off the face normal that
-// separate them by 1e-4 to 1e-3 m more than the face axis: box-box contacts that took such an
+// Two columns of the 1000-box pile (docs/scene-specifications.md B1: boxes i = ix + 10 iy + 100 iz
+// of columns (ix, iy) = (6, 4) and (7, 4), iz = 0..9, yawed by the golden angle and tilted by up to
+// 0.1 rad) fall onto the floor, each box landing on the one below at 2-5 m/s. Boxes stacked face on
+// face with a small relative tilt and yaw have edge-cross axes a few degrees off the face normal
+// that separate them by 1e-4 to 1e-3 m more than the face axis: box-box contacts that took such an
 // axis got one edge point, and the upper box pivoted about it and sank into the lower one (box 146
 // 1.7 cm into box 46 at step 20, box 247 into box 147 by 2.8 cm at step 27 and 10 cm by step 40).
 DropResult dropPileColumns(int steps) {

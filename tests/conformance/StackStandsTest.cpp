@@ -1,5 +1,5 @@
-// SCENES.md A3 and A4: the 20-box tower and the 55-box pyramid stand (no box moves more than
-// 1 mm over 10 s at dt = 0.01, sleep off) with pgs, bgs and ac_newton.
+// docs/scene-specifications.md A3 and A4: the 20-box tower and the 55-box pyramid stand (no box
+// moves more than 1 mm over 10 s at dt = 0.01, sleep off) with pgs, bgs and ac_newton.
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 
@@ -15,13 +15,13 @@ using namespace coulomb;
 
 namespace {
 
-// SCENES.md A3/A4 goal: no box moves more than 1 mm in 10 s at dt = 0.01.
+// docs/scene-specifications.md A3/A4 goal: no box moves more than 1 mm in 10 s at dt = 0.01.
 constexpr double kMaxDisplacement = 1e-3;  // [m]
 #ifdef COULOMB_SANITIZE
 constexpr std::uint64_t kSteps = 200;  // 2 s: ASan/UBSan runs 3-5x slower
 constexpr std::uint64_t kShortSteps = 20;
 #else
-constexpr std::uint64_t kSteps = 1000;  // 10 s at dt = 0.01 (SCENES.md A3, A4)
+constexpr std::uint64_t kSteps = 1000;  // 10 s at dt = 0.01 (docs/scene-specifications.md A3, A4)
 // ac_newton on the pyramid costs ~0.2 s per step here (21 sparse-LU Newton steps on 1200
 // unknowns): 1 s of it by default, the full 10 s with COULOMB_LONG_TESTS=1 (docs/scene-format.md).
 constexpr std::uint64_t kShortSteps = 100;
@@ -48,8 +48,8 @@ StandingRun runStanding(const std::string& sceneName, const std::string& solver)
   engine::io::Scene scene = scenes::loadBuiltinScene(sceneName);
   // The named solver first, the automatic plan's fallbacks after it (SolverChooser). Gauss-Seidel
   // attempts are capped at 300 sweeps so that a step it cannot finish (the 20-box tower: load
-  // travels through 20 boxes, SOLVERS.md section 5) falls back quickly instead of sweeping 10^4
-  // times; the figures printed below say how often that happened.
+  // travels through 20 boxes, docs/solver-derivations.md section 5) falls back quickly instead of
+  // sweeping 10^4 times; the figures printed below say how often that happened.
   scene.settings.solve.choice = coulomb::solvers::solverChoice(solver);
   if (solver != "ac_newton") scene.settings.solve.options.maxIterations = 300;
   engine::World world = engine::io::buildWorld(scene);

@@ -1,5 +1,6 @@
-// SCENES.md B2, B3 (issue 8 item 1) and the long-run stability cases (item 5, A3, A4, B1) through
-// the conformance framework (samples/conformance/StructureCases.cpp, StabilityCases.cpp):
+// docs/scene-specifications.md B2, B3 (issue 8 item 1) and the long-run stability cases (item 5,
+// A3, A4, B1) through the conformance framework (samples/conformance/StructureCases.cpp,
+// StabilityCases.cpp):
 // - the card house stands at mu 0.6 and collapses at mu 0.2 (static LP mu_min = 0.3292);
 // - the masonry arch stands at mu 0.6 (crown thrust inside the admissible LP range, abutment load
 //   W/2 to 1e-3) and collapses at mu 0.2 and 0.1 (thrust-line LP mu_min = 0.3086).
@@ -21,9 +22,10 @@ using namespace coulomb;
 
 namespace {
 
-// Horizon scales (fractions of the SCENES.md duration): the structures that must stand run their
-// full 10 s; a collapse is complete within 0.5 s (top_drop 0.49 m at 0.5 s, 0.54 m at 10 s, where
-// the fallen cards cost ~0.2 s per step); the 10 000-step stability cases run 50-200 steps.
+// Horizon scales (fractions of the docs/scene-specifications.md duration): the structures that must
+// stand run their full 10 s; a collapse is complete within 0.5 s (top_drop 0.49 m at 0.5 s, 0.54 m
+// at 10 s, where the fallen cards cost ~0.2 s per step); the 10 000-step stability cases run 50-200
+// steps.
 #ifdef COULOMB_SANITIZE
 constexpr double kSanitizerFactor = 0.2;  // ASan/UBSan run 3-5x slower
 #else

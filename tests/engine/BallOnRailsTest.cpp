@@ -1,7 +1,7 @@
-// A spinning ball on two parallel rails of static capsules (SCENES.md B11's contact geometry on a
-// straight track): the spin turns into rolling at the analytic speed and time, whether each rail
-// is one capsule or a chain of 1 cm pieces, and a rolling ball keeps its kinetic energy over the
-// capsule joints (no ghost contacts at the shared ends, no lift-off).
+// A spinning ball on two parallel rails of static capsules (docs/scene-specifications.md B11's
+// contact geometry on a straight track): the spin turns into rolling at the analytic speed and
+// time, whether each rail is one capsule or a chain of 1 cm pieces, and a rolling ball keeps its
+// kinetic energy over the capsule joints (no ghost contacts at the shared ends, no lift-off).
 #include <coulomb/engine/World.hpp>
 
 #include <gtest/gtest.h>
@@ -19,7 +19,8 @@ constexpr double kLength = 4.0;  // rails [m] from x = -1 (the slip test ends at
 constexpr double kLength = 8.0;
 #endif
 
-// Ball centre height above the rail axes' plane and the rolling radius (SCENES.md B11).
+// Ball centre height above the rail axes' plane and the rolling radius
+// (docs/scene-specifications.md B11).
 const double kHeight = std::sqrt((kRho + kRail) * (kRho + kRail) - kWidth * kWidth / 4);
 const double kRhoEff = kRho * kHeight / (kRho + kRail);
 
@@ -60,7 +61,8 @@ std::unique_ptr<Rig> makeRig(double mu, double piece, const Eigen::Vector3d& v,
 
 // Slip to rolling on a straight: friction mu N / cos(beta) in all drives the ball and brakes the
 // spin about the rolling radius; slip ends at t* = rho_eff w0 / (mu g / cos beta (1 + 1/k')) with
-// v = rho_eff w0 k' / (1 + k'), k' = I / (m rho_eff^2) (SCENES.md B11, reduced model).
+// v = rho_eff w0 k' / (1 + k'), k' = I / (m rho_eff^2) (docs/scene-specifications.md B11, reduced
+// model).
 void expectAnalyticRolling(double piece) {
   const double mu = 0.6, cosBeta = kHeight / (kRho + kRail);
   const double k = kInertia / (kMass * kRhoEff * kRhoEff);

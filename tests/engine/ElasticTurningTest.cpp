@@ -1,8 +1,8 @@
 // Elastic turning (ContactSettings::elasticTurning, docs/tuning.md): a ball circling inside a
-// ring of two capsule rails (SCENES.md B11's rail geometry curled into one loop, no gravity) keeps
-// its kinetic energy with the option on and loses ~ pi m v^3 h / R per turn with it off (each
-// inelastic step removes the normal velocity n_k+1 . v = -v sin(v h / R) that the turning of the
-// normal creates); a resting box stack is not made to bounce by it.
+// ring of two capsule rails (docs/scene-specifications.md B11's rail geometry curled into one loop,
+// no gravity) keeps its kinetic energy with the option on and loses ~ pi m v^3 h / R per turn with
+// it off (each inelastic step removes the normal velocity n_k+1 . v = -v sin(v h / R) that the
+// turning of the normal creates); a resting box stack is not made to bounce by it.
 #include <coulomb/engine/World.hpp>
 
 #include <gtest/gtest.h>
@@ -21,8 +21,8 @@ constexpr double kRho = 0.1, kRail = 0.01, kWidth = 0.1, kMass = 1.0, kInertia =
 constexpr double kRingRadius = 1.0;  // [m] rail axes
 constexpr int kPieces = 720;         // 0.5 degree per capsule, as the double loop's rails
 constexpr double kH = 0.01;
-// Ball centre from the rails' plane along the normal and its rolling radius (SCENES.md B11); the
-// centre circles at kRingRadius - kHeight.
+// Ball centre from the rails' plane along the normal and its rolling radius
+// (docs/scene-specifications.md B11); the centre circles at kRingRadius - kHeight.
 const double kHeight = std::sqrt((kRho + kRail) * (kRho + kRail) - kWidth * kWidth / 4);
 const double kRhoEff = kRho * kHeight / (kRho + kRail);
 const double kPathRadius = kRingRadius - kHeight;

@@ -1,7 +1,7 @@
 #pragma once
-// The jointed scenes of SCENES.md (A6 chain, B8 pendulum, B9 double pendulum, B10 four-bar)
-// built through the C++ API, with the metrics those sections define. Numbers copied from
-// SCENES.md (tests never read the design folder).
+// The jointed scenes of docs/scene-specifications.md (A6 chain, B8 pendulum, B9 double pendulum,
+// B10 four-bar) built through the C++ API, with the metrics those sections define. Numbers copied
+// from docs/scene-specifications.md (tests never read the design folder).
 #include <coulomb/engine/World.hpp>
 
 #include <Eigen/Geometry>
@@ -76,8 +76,9 @@ struct JointedScene {
   explicit JointedScene(engine::WorldSettings s) : world(std::move(s)) {}
 };
 
-/// SCENES.md A6: N capsule links (0.1 kg, I = (4.857143e-6, 7.557143e-5, 7.557143e-5)), ball
-/// joints 0.1 m apart, released horizontal along +x, first anchor at the world origin.
+/// docs/scene-specifications.md A6: N capsule links (0.1 kg, I =
+/// (4.857143e-6, 7.557143e-5, 7.557143e-5)), ball joints 0.1 m apart, released horizontal along +x,
+/// first anchor at the world origin.
 inline void buildChain(JointedScene& scene, int links) {
   const Eigen::Vector3d moments(4.857143e-6, 7.557143e-5, 7.557143e-5);
   for (int i = 0; i < links; ++i) {
@@ -92,7 +93,8 @@ inline void buildChain(JointedScene& scene, int links) {
   }
 }
 
-/// SCENES.md B8: sphere bob 1 kg, I 0.001, at (1, 0, 0), ball joint at the origin.
+/// docs/scene-specifications.md B8: sphere bob 1 kg, I 0.001, at (1, 0, 0), ball joint at the
+/// origin.
 inline void buildPendulum(JointedScene& scene, joints::JointType type = joints::JointType::Ball) {
   scene.bodies.push_back(addBody(scene.world, "bob", geometry::Pose::translation({1, 0, 0}), 1.0,
                                  Eigen::Vector3d::Constant(0.001)));
@@ -100,13 +102,13 @@ inline void buildPendulum(JointedScene& scene, joints::JointType type = joints::
       jointDesc(type, geometry::BodyId{}, scene.bodies[0], Eigen::Vector3d::Zero(), {-1, 0, 0})));
 }
 
-/// R_y(alpha) as a quaternion (SCENES.md section 0).
+/// R_y(alpha) as a quaternion (docs/scene-specifications.md section 0).
 inline Eigen::Quaterniond rotY(double alpha) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitY()));
 }
 
-/// SCENES.md B9: two capsules (1 kg, I = (1.978082e-4, 0.01985808, 0.01985808)), hinges about
-/// world y, angles theta_i from the downward vertical.
+/// docs/scene-specifications.md B9: two capsules (1 kg, I = (1.978082e-4, 0.01985808, 0.01985808)),
+/// hinges about world y, angles theta_i from the downward vertical.
 inline void buildDoublePendulum(JointedScene& scene, double theta1, double theta2) {
   const Eigen::Vector3d moments(1.978082e-4, 0.01985808, 0.01985808);
   const Eigen::Vector3d d1(std::sin(theta1), 0, -std::cos(theta1));

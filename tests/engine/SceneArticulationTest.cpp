@@ -1,5 +1,5 @@
 // The "articulations" section of JSON scenes (docs/scene-format.md) and the built-in scenes
-// pendulum_reduced (SCENES.md B8, reduced variant) and arm_pushing_boxes.
+// pendulum_reduced (docs/scene-specifications.md B8, reduced variant) and arm_pushing_boxes.
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/io/SceneLoader.hpp>
@@ -31,7 +31,7 @@ TEST(SceneArticulation, ReducedPendulumHasTheEllipticPeriod) {
   engine::World world = engine::io::buildWorld(scene);
   const geometry::ArticulationId id{0, 0};
   ASSERT_TRUE(world.articulations().contains(id));
-  // Sign changes of the bob's x (SCENES.md B8 metric): period = t_{i+2} - t_i.
+  // Sign changes of the bob's x (docs/scene-specifications.md B8 metric): period = t_{i+2} - t_i.
   std::vector<double> crossings;
   double previousX = 1.0, previousT = 0.0;
   for (std::uint64_t k = 0; k < scene.steps; ++k) {

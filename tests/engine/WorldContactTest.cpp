@@ -1,4 +1,5 @@
-// The step with contacts: analytic resting and friction cases (SCENES.md A2, section 0 rules).
+// The step with contacts: analytic resting and friction cases (docs/scene-specifications.md A2,
+// section 0 rules).
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
@@ -24,7 +25,7 @@ BodyId addGround(engine::World& world, const Eigen::Quaterniond& rotation, doubl
   return world.createBody(ground);
 }
 
-// SCENES.md "box(h, m)": cube of half side h, I = m 8h^2/12 on every axis.
+// docs/scene-specifications.md "box(h, m)": cube of half side h, I = m 8h^2/12 on every axis.
 BodyId addBox(engine::World& world, const geometry::Pose& pose, double h, double m, double mu,
               const std::string& solver = "") {
   engine::BodyDesc box;
@@ -68,7 +69,8 @@ INSTANTIATE_TEST_SUITE_P(EverySolver, RestingBox,
                          ::testing::Values("auto", "pgs", "bgs", "ac_newton"));
 
 TEST(WorldContact, BoxOnInclineBelowFrictionAngleDoesNotCreep) {
-  // SCENES.md A2 A_stick: 20 degree incline, mu = tan 20 + 0.05, 1 kg box, h = 0.1.
+  // docs/scene-specifications.md A2 A_stick: 20 degree incline, mu = tan 20 + 0.05, 1 kg box, h =
+  // 0.1.
   const double angle = 20.0 * std::numbers::pi / 180.0;
   const Eigen::Quaterniond tilt(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()));
   const double mu = std::tan(angle) + 0.05;
@@ -82,7 +84,8 @@ TEST(WorldContact, BoxOnInclineBelowFrictionAngleDoesNotCreep) {
 }
 
 TEST(WorldContact, BoxOnInclineAboveFrictionAngleSlidesAtTheCoulombAcceleration) {
-  // SCENES.md A2 B_slide: mu = tan 20 - 0.1, a = g (sin 20 - mu cos 20) = 0.9218385 m/s^2.
+  // docs/scene-specifications.md A2 B_slide: mu = tan 20 - 0.1, a = g (sin 20 - mu cos 20) =
+  // 0.9218385 m/s^2.
   const double angle = 20.0 * std::numbers::pi / 180.0;
   const Eigen::Quaterniond tilt(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()));
   const double mu = std::tan(angle) - 0.1;
@@ -102,7 +105,8 @@ TEST(WorldContact, BoxOnInclineAboveFrictionAngleSlidesAtTheCoulombAcceleration)
 }
 
 TEST(WorldContact, PushAtAnAngleSlidesStraight) {
-  // SCENES.md A2 C_flat_22.5deg: the exact cone keeps the direction (pyramids bend it 13.5 deg).
+  // docs/scene-specifications.md A2 C_flat_22.5deg: the exact cone keeps the direction (pyramids
+  // bend it 13.5 deg).
   engine::World world;
   addGround(world, Eigen::Quaterniond::Identity(), 0.5);
   const BodyId box = addBox(world, geometry::Pose::translation({0, 0, 0.1}), 0.1, 1.0, 0.5);
@@ -111,7 +115,7 @@ TEST(WorldContact, PushAtAnAngleSlidesStraight) {
   for (int k = 0; k < 100; ++k) world.step(0.01);
   const Eigen::Vector3d p = world.pose(box).position;
   EXPECT_NEAR(std::atan2(p.y(), p.x()), a, 1e-6);
-  // Discrete floor at dt 0.01: stop distance 0.096995 m (SCENES.md A2).
+  // Discrete floor at dt 0.01: stop distance 0.096995 m (docs/scene-specifications.md A2).
   EXPECT_NEAR(std::hypot(p.x(), p.y()), 0.096995, 1e-5);
   EXPECT_LT(world.linearVelocity(box).norm(), 1e-9);
 }

@@ -1,5 +1,5 @@
-// Joints in the World: SCENES.md A6 (chain), B8 (pendulum), B9 (double pendulum), with the
-// pass criteria written there.
+// Joints in the World: docs/scene-specifications.md A6 (chain), B8 (pendulum), B9 (double
+// pendulum), with the pass criteria written there.
 #include <gtest/gtest.h>
 #include "JointTestScenes.hpp"
 
@@ -44,10 +44,10 @@ ChainFigures runChain(int links, double h, double seconds, joints::Stabilization
 
 }  // namespace
 
-// SCENES.md A6 at dt = 0.01, 10 s. The gap target (< 1e-4 m) is met with the predicted
-// state; its energy target (loss < 10 %) is NOT (an ensemble mean of about -80 %, single
-// trajectories -55 to -91 %; see docs/tuning.md). The energy bound is the measured mean with a
-// margin, so a regression fails.
+// docs/scene-specifications.md A6 at dt = 0.01, 10 s. The gap target (< 1e-4 m) is met with
+// the predicted state; its energy target (loss < 10 %) is NOT (an ensemble mean of about -80 %,
+// single trajectories -55 to -91 %; see docs/tuning.md). The energy bound is the measured mean with
+// a margin, so a regression fails.
 TEST(WorldJoint, Chain10BothPoliciesStayConnected) {
   // The whipping chain is chaotic: a change of 1e-13 in g moves the energy left after 10 s by
   // +-15 %, so the dissipation of a policy is read from a small ensemble (g scaled by 1 + k 1e-13),
@@ -90,7 +90,8 @@ TEST(WorldJoint, Chain10AtSmallStepKeepsItsEnergy) {
   EXPECT_GT(f.energyDriftEnd, -0.10);
 }
 
-// SCENES.md B8: period T = 4 sqrt(l_eq/g) K(1/2) = 2.369025573 s (l_eq = 1.001 m).
+// docs/scene-specifications.md B8: period T = 4 sqrt(l_eq/g) K(1/2) = 2.369025573 s (l_eq = 1.001
+// m).
 TEST(WorldJoint, PendulumPeriodAtNinetyDegrees) {
   for (const auto method :
        {joints::StabilizationMethod::PredictedState, joints::StabilizationMethod::Baumgarte}) {
@@ -123,7 +124,8 @@ TEST(WorldJoint, PendulumPeriodAtNinetyDegrees) {
   }
 }
 
-// SCENES.md B9: normal modes 1.654864 s and 0.608693 s; release_horizontal conserves energy.
+// docs/scene-specifications.md B9: normal modes 1.654864 s and 0.608693 s; release_horizontal
+// conserves energy.
 TEST(WorldJoint, DoublePendulumModesAndEnergy) {
   struct Mode {
     double theta2;
@@ -231,7 +233,8 @@ TEST(WorldJoint, ThousandToOneLoadStaysConnected) {
 
 namespace {
 
-/// SCENES.md B8's bob on a hinge about y at the origin; the hinge angle grows as it falls.
+/// docs/scene-specifications.md B8's bob on a hinge about y at the origin; the hinge angle grows as
+/// it falls.
 JointedScene hingedPendulum(const joints::JointDef& extras) {
   JointedScene scene(settingsWith(joints::StabilizationMethod::PredictedState, "auto"));
   scene.bodies.push_back(addBody(scene.world, "bob", geometry::Pose::translation({1, 0, 0}), 1.0,

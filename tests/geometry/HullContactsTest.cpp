@@ -137,5 +137,41 @@ TEST(HullContacts, LargeHullsAreLeftToFcl) {
       -1);
 }
 
+// makeConvexHull builds the faces once: wedges of an arch get one polygonal face per joint (a
+// quadrilateral from two triangles), and each edge once.
+TEST(HullContacts, MakeConvexHullMergesCoplanarTrianglesIntoFaces) {
+  const ConvexHull block = wedge(0.1);
+  ASSERT_EQ(block.faces.size(), 6u);
+  for (const HullFace& face : block.faces) {
+    EXPECT_EQ(face.loop.size(), 4u);
+    for (const int v : face.loop)
+      EXPECT_NEAR(face.normal.dot(block.vertices[static_cast<std::size_t>(v)]), face.offset,
+                  1e-12);
+  }
+  EXPECT_EQ(block.edges.size(), 12u);
+}
+
+// A hull given with triangles but without faces (built by hand) gets the same manifold: the
+// query builds the faces itself, and a kept scratch answers the same on reuse.
+TEST(HullContacts, HullWithoutFacesGivesTheSameManifold) {
+  const ConvexHull block = wedge(0.1);
+  ConvexHull bare;
+  bare.vertices = block.vertices;
+  bare.triangles = block.triangles;
+  const Pose upper = rotated({1, 0.3, 0}, 0.05, {0.1, 0.05, 1.0 - 1e-3});
+  PairContact withFaces, withoutFaces, again;
+  ASSERT_EQ(hullHull(block, Pose::identity(), block, upper, kMargin, withFaces), 1);
+  HullScratch scratch;
+  ASSERT_EQ(hullHull(bare, Pose::identity(), bare, upper, kMargin, withoutFaces, scratch), 1);
+  ASSERT_EQ(hullHull(block, Pose::identity(), block, upper, kMargin, again, scratch), 1);
+  ASSERT_EQ(withFaces.points.size(), withoutFaces.points.size());
+  ASSERT_EQ(withFaces.points.size(), again.points.size());
+  EXPECT_TRUE(withFaces.normal.isApprox(withoutFaces.normal, 1e-12));
+  for (std::size_t k = 0; k < withFaces.points.size(); ++k) {
+    EXPECT_TRUE(withFaces.points[k].position.isApprox(withoutFaces.points[k].position, 1e-12));
+    EXPECT_EQ(withFaces.points[k].featureId, again.points[k].featureId);
+  }
+}
+
 }  // namespace
 }  // namespace coulomb::geometry

@@ -1,5 +1,6 @@
-// Semi-implicit Euler for articulations: pendulum periods (SCENES.md B8), energy of a frictionless
-// free-floating tree, momentum in free fall, and the joint-manifold position update.
+// Semi-implicit Euler for articulations: pendulum periods (docs/scene-specifications.md B8), energy
+// of a frictionless free-floating tree, momentum in free fall, and the joint-manifold position
+// update.
 #include <gtest/gtest.h>
 #include <coulomb/integrators/ArticulationIntegrator.hpp>
 #include <coulomb/joints/tree/TreeKinematics.hpp>
@@ -15,7 +16,8 @@ using coulomb::integrators::integrateConfiguration;
 using coulomb::integrators::stepArticulation;
 
 namespace {
-/// SCENES.md B8: bob 1 kg, I 0.001, COM 1 m from a pivot at the origin, hinge about y.
+/// docs/scene-specifications.md B8: bob 1 kg, I 0.001, COM 1 m from a pivot at the origin, hinge
+/// about y.
 Articulation compoundPendulum() {
   const coulomb::geometry::SpatialInertia bob{1.0, Eigen::Vector3d(1, 0, 0),
                                               0.001 * Eigen::Matrix3d::Identity()};

@@ -179,8 +179,9 @@ TEST_F(CliOutputs, JointDriftIsReportedByRunStatsAndCompare) {
 }
 
 TEST_F(CliOutputs, ConformanceRunsACaseOncePerSolverAndWritesTheTable) {
-  // sphere_slide (SCENES.md A1) with auto and pgs alone: one row each, both pass, and the Markdown
-  // table has a header and the two rows. An unknown case is named with the known ones.
+  // sphere_slide (docs/scene-specifications.md A1) with auto and pgs alone: one row each, both
+  // pass, and the Markdown table has a header and the two rows. An unknown case is named with the
+  // known ones.
   const CommandResult r = runCoulomb(
       "conformance --cases sphere_slide --solvers auto,pgs! "
       "--markdown " +

@@ -7,7 +7,8 @@
 
 using namespace coulomb::solvers;
 
-// Single contact, W = I, mu = 0.5: the analytic answers of SOLVERS.md (7.4) for the exact cone.
+// Single contact, W = I, mu = 0.5: the analytic answers of docs/solver-derivations.md (7.4) for the
+// exact cone.
 TEST(FbNewtonSolver, SingleContactAnalytic) {
   const Eigen::Matrix3d W = Eigen::Matrix3d::Identity();
   const double mu = 0.5;

@@ -11,7 +11,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }
 
-// SOLVERS.md (7.4), one contact, W = I, mu = 0.5, n_d = 8.
+// docs/solver-derivations.md (7.4), one contact, W = I, mu = 0.5, n_d = 8.
 TEST(LemkeSolver, SingleContactTakeOffAndStickAreExact) {
   const Eigen::Matrix3d W = Eigen::Matrix3d::Identity();
   SolveOutcome out = LemkeSolver().solve(fixtures::singleContact(W, {0.3, 1, -2}, 0.5));
@@ -50,7 +50,8 @@ TEST(LemkeSolver, SlidingBetweenFacetsShowsTheConeError) {
 }
 
 // A body squeezed between two opposite contacts that both demand separation (bias on a null
-// direction of W, SOLVERS.md (7.7)): the ray is reported as a status with the reason.
+// direction of W, docs/solver-derivations.md (7.7)): the ray is reported as a status with the
+// reason.
 TEST(LemkeSolver, SqueezedBodyWithBiasEndsOnARay) {
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, 3);  // one body, 3 translational dofs
   J(0, 0) = 1;                                      // contact 1 normal +x

@@ -20,8 +20,8 @@ TEST(LocalContactSolver, ClosedFormStages) {
   EXPECT_LT((slip.r - Eigen::Vector3d(1, -0.3, -0.4)).norm(), 1e-15);
 }
 
-// SOLVERS.md section 4 check: random local problems of four families at scales 1e-6..1e6 are all
-// solved to the local tolerance 1e-14 (20 000 in the prototype; 2 000 here).
+// docs/solver-derivations.md section 4 check: random local problems of four families at scales
+// 1e-6..1e6 are all solved to the local tolerance 1e-14 (20 000 in the prototype; 2 000 here).
 TEST(LocalContactSolver, RandomProblemsAllScalesAndConditionings) {
   std::mt19937 rng(1);
   std::normal_distribution<double> g(0, 1);

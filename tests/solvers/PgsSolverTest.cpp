@@ -6,8 +6,8 @@
 using namespace coulomb::solvers;
 
 TEST(PgsSolver, ScalarTangentialStepGivesTheRightSlipDirection) {
-  // SOLVERS.md (3.2): W_cc = diag(1, 1, 4), q = (-1, -3, -3), mu = 0.5. A matrix step converges to
-  // friction at 14 degrees while -u_T points at 45; the scalar step is exact.
+  // docs/solver-derivations.md (3.2): W_cc = diag(1, 1, 4), q = (-1, -3, -3), mu = 0.5. A matrix
+  // step converges to friction at 14 degrees while -u_T points at 45; the scalar step is exact.
   const ContactProblem p = fixtures::singleContact(Eigen::Vector3d(1, 1, 4).asDiagonal(),
                                                    Eigen::Vector3d(-1, -3, -3), 0.5);
   SolverOptions o;
