@@ -109,10 +109,18 @@ void NewtonLinearSolver::fillSparse(const BlockSparseMatrix& W, const std::vecto
 bool NewtonLinearSolver::solve(const BlockSparseMatrix& W, const std::vector<int>& offset,
                                const std::vector<NewtonBlockJacobian>& jac,
                                const std::vector<int>& kept, const std::vector<int>& index,
-                               double sigma, const Eigen::VectorXd& rhsIn, Eigen::VectorXd& xOut) {
+                               double sigma, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+  x.resize(static_cast<Eigen::Index>(kept.size()));
+  return solveLeading(W, offset, jac, kept, index, sigma, rhs, x);
+}
+
+bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vector<int>& offset,
+                                      const std::vector<NewtonBlockJacobian>& jac,
+                                      const std::vector<int>& kept, const std::vector<int>& index,
+                                      double sigma, const Eigen::VectorXd& rhsIn,
+                                      Eigen::VectorXd& xOut) {
   const int m = static_cast<int>(kept.size());
-  if (rhsIn.size() < m) return false;
-  if (xOut.size() < m) xOut.resize(m);
+  if (rhsIn.size() < m || xOut.size() < m) return false;
   const auto rhs = rhsIn.head(m);
   auto x = xOut.head(m);
   if (check_.size() < m) check_.resize(std::max<Eigen::Index>(m, W.size()));

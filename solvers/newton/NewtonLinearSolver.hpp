@@ -45,16 +45,20 @@ class NewtonLinearSolver {
   explicit NewtonLinearSolver(int denseThreshold, double maxSparseDensity = 0.5)
       : denseThreshold_(denseThreshold), maxSparseDensity_(maxSparseDensity) {}
 
-  // Solves J_RR x = rhs. `kept` lists the rows of R in increasing order, `index[i]` is the position
-  // of row i in `kept` or -1; `offset` the block offsets of W (blockCount + 1 entries), `jac` the
-  // blocks A_b, B_b. rhs: its first |R| entries are the right-hand side; x: resized to |R| when
-  // shorter, else only its first |R| entries are written (a caller that keeps rhs and x at the
-  // problem's size never reallocates them). False when the factorization fails or the solution
-  // is not accurate (||J_RR x - rhs|| > 1e-8 ||rhs||).
+  // Solves J_RR x = rhs (rhs and x: |R| entries; x is resized to |R|). `kept` lists the rows of
+  // R in increasing order, `index[i]` is the position of row i in `kept` or -1; `offset` the
+  // block offsets of W (blockCount + 1 entries), `jac` the blocks A_b, B_b. False when the
+  // factorization fails or the solution is not accurate (||J_RR x - rhs|| > 1e-8 ||rhs||).
   bool solve(const BlockSparseMatrix& W, const std::vector<int>& offset,
              const std::vector<NewtonBlockJacobian>& jac, const std::vector<int>& kept,
              const std::vector<int>& index, double sigma, const Eigen::VectorXd& rhs,
              Eigen::VectorXd& x);
+  // The same on the leading |R| entries of rhs and x, both at least |R| long and never resized:
+  // the Newton loop keeps them at the problem's size, so a changing |R| reallocates nothing.
+  bool solveLeading(const BlockSparseMatrix& W, const std::vector<int>& offset,
+                    const std::vector<NewtonBlockJacobian>& jac, const std::vector<int>& kept,
+                    const std::vector<int>& index, double sigma, const Eigen::VectorXd& rhs,
+                    Eigen::VectorXd& x);
 
   [[nodiscard]] const NewtonLinearStats& stats() const { return stats_; }
   [[nodiscard]] int denseThreshold() const { return denseThreshold_; }

@@ -146,7 +146,7 @@ class NewtonSystem {
     if (x.size() != n) x.resize(n);
     for (int k = 0; k < m; ++k) rhs[k] = -phi[kept[k]] - jd[kept[k]];
     // J_RR = (A (W + sigma I) + B)_RR: dense or sparse LU (NewtonLinearSolver).
-    if (!linear_.solve(p_.W, p_.offset, jac_, kept, index, sigma, rhs, x)) return false;
+    if (!linear_.solveLeading(p_.W, p_.offset, jac_, kept, index, sigma, rhs, x)) return false;
     for (int k = 0; k < m; ++k) d[kept[k]] = x[k];
     return true;
   }
