@@ -82,16 +82,10 @@ void hullPolytope(const ConvexHull& hull, const Pose& pose, ConvexHull& faceless
   setCentroid(p);
 }
 
-// Corner c of a box: bit k of c set = +halfExtents[k] along axis k.
-Eigen::Vector3d boxCorner(const Eigen::Vector3d& halfExtents, int c) {
-  Eigen::Vector3d v;
-  for (int k = 0; k < 3; ++k) v[k] = ((c >> k) & 1 ? 1.0 : -1.0) * halfExtents[k];
-  return v;
-}
-
 void boxPolytope(const Box& box, const Pose& pose, ConvexHull& topology, WorldPolytope& p) {
   if (topology.faces.empty()) {  // faces +x, -x, +y, -y, +z, -z of the unit cube's corners
-    for (int c = 0; c < 8; ++c) topology.vertices.push_back(boxCorner(Eigen::Vector3d::Ones(), c));
+    const auto corners = boxCorners(Box{Eigen::Vector3d::Ones()}, Pose::identity());
+    topology.vertices.assign(corners.begin(), corners.end());  // corner c: bit k set = +axis k
     for (int k = 0; k < 3; ++k)
       for (const int side : {1, 0}) {
         HullFace face;
