@@ -126,6 +126,12 @@ std::optional<std::string> validateShape(const Shape& shape) {
             for (std::size_t i = 0; i < h.vertices.size(); ++i)
               if (!h.vertices[i].allFinite())
                 return "convex_hull point " + std::to_string(i) + " is not finite";
+            // Given triangles (a hull built by hand) are read by the contact queries as they are.
+            const auto n = static_cast<int>(h.vertices.size());
+            for (std::size_t t = 0; t < h.triangles.size(); ++t)
+              if (h.triangles[t].minCoeff() < 0 || h.triangles[t].maxCoeff() >= n)
+                return "convex_hull triangle " + std::to_string(t) +
+                       " refers to a point outside [0, " + std::to_string(n) + ")";
             return checkSpansVolume(h.vertices);
           },
           [](const TriangleMesh& m) -> std::optional<std::string> {

@@ -42,6 +42,17 @@ TEST(Shape, HullMustSpanAVolume) {
   EXPECT_FALSE(validateShape(good).has_value());
 }
 
+TEST(Shape, HullTrianglesMustReferToItsPoints) {
+  ConvexHull hull;
+  hull.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  hull.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  EXPECT_FALSE(validateShape(hull).has_value());
+  hull.triangles[2] = {0, 4, 2};
+  EXPECT_NE(validateShape(hull).value_or("").find("triangle 2"), std::string::npos);
+  hull.triangles[2] = {0, -1, 2};
+  EXPECT_TRUE(validateShape(hull).has_value());
+}
+
 namespace {
 TriangleMesh tetrahedron() {
   TriangleMesh tetra;
