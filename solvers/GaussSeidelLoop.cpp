@@ -100,9 +100,18 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
   report.status = SolverStatus::MaxIterations;
   report.nativeResidualName = "common residual at the last check";
   int sweep = 0;
+  bool cg = false;
+  for (int b = 0; b < nb && settings.conjugateGradient; ++b) cg = cg || p.blocks[b].isContact();
+  Eigen::VectorXd &previous = work.previous, &direction = work.direction;
+  Eigen::VectorXd &previousDv = work.previousDv, &directionDv = work.directionDv;
+  double previousStepNorm = -1.0;  // ||x_k - x_{k-1}||^2 of the last sweep; < 0: no direction yet
   while (sweep < maxSweeps) {
     if (context.timeUp(report)) break;
     ++sweep;
+    if (cg) {
+      previous = r;
+      if (body) previousDv = dv;
+    }
     if (settings.shuffle)
       for (int i = nb - 1; i > 0; --i) std::swap(order[i], order[rng() % (i + 1)]);
     for (int b : order) {
@@ -137,9 +146,33 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
         body->addBlockImpulse(b, dx, dv);
       }
     }
+    // NNCG: the sweep's step g = x_{k+1} - x_k plays -grad f; beta = ||g_{k+1}||^2/||g_k||^2.
+    double beta = 0.0;
+    if (cg) {
+      const double stepNorm = (r - previous).squaredNorm();
+      if (previousStepNorm > 0) beta = stepNorm / previousStepNorm;
+      if (!(beta <= 1.0)) beta = 0.0;  // restart: p = 0
+      previousStepNorm = stepNorm;
+    }
+    auto accelerate = [&] {
+      if (!cg) return;
+      if (beta > 0) {
+        r += beta * direction;
+        if (body) dv += beta * directionDv;
+      }
+      direction = r - previous;
+      if (body) directionDv = dv - previousDv;
+      if (beta == 0.0 && previousStepNorm > 0 && sweep > 1) {
+        direction.setZero();
+        if (body) directionDv.setZero();
+      }
+    };
     const int interval =
         settings.residualInterval > 0 ? settings.residualInterval : std::clamp(sweep / 20, 1, 5);
-    if (sweep % interval != 0 && sweep != maxSweeps) continue;
+    if (sweep % interval != 0 && sweep != maxSweeps) {
+      accelerate();
+      continue;
+    }
     double e = 0.0;
     if (body) {  // u = q + J dv: one pass, dv is current
       u = p.q;
@@ -174,6 +207,8 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
           report.note(s.str());
           r = best;
           if (body) body->bodyVelocities(r, dv);
+          beta = 0.0;  // no momentum across the reset
+          previousStepNorm = -1.0;
         } else {
           report.status = SolverStatus::Stalled;
           std::ostringstream s;
@@ -186,6 +221,7 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
       windowBest = bestResidual;
       windowStart = sweep;
     }
+    accelerate();
   }
   report.iterations = sweep;
   if (report.status != SolverStatus::Converged) r = best;

@@ -24,6 +24,9 @@ struct GaussSeidelSettings {
   std::uint64_t seed = 0;        // seed of that RNG (determinism rule 7)
   int residualInterval = 0;      // [sweeps] between residual checks; 0 = auto (1, then up to 5)
   int defaultMaxSweeps = 10000;  // when SolverOptions::maxIterations is 0
+  // Nonsmooth nonlinear conjugate gradient (Silcowski, Erleben et al. 2015, Algorithm 2): after
+  // every sweep add beta_k p_k (Fletcher-Reeves beta on the sweep steps, restart when beta > 1).
+  bool conjugateGradient = false;
 };
 
 // Proposes a new r_c for contact block b given its local free velocity q~ (r holds r_c on entry).
@@ -51,6 +54,7 @@ class ContactUpdate {
 struct GaussSeidelWorkspace {
   std::vector<int> order;
   Eigen::VectorXd u, best, dv;
+  Eigen::VectorXd previous, direction, previousDv, directionDv;  // conjugateGradient only
 };
 
 void runGaussSeidel(const PreparedProblem& problem, const SolveContext& context,

@@ -16,13 +16,13 @@ const char* planRuleName(PlanRule rule) {
     case PlanRule::JointRowsOnly:
       return "joint rows only: ac_newton, Gauss-Seidel converges slowly";
     case PlanRule::LargeIsland:
-      return "large island: Gauss-Seidel, no Newton beyond newton_max_unknowns";
+      return "large island: nncg, no Newton beyond newton_max_unknowns";
     case PlanRule::MassRatio:
       return "mass ratio above newton_mass_ratio: Newton, Gauss-Seidel stagnates";
     case PlanRule::PileByNu:
-      return "pile or tower by nu: pgs, then ac_newton";
+      return "pile or tower by nu: nncg, then ac_newton";
     case PlanRule::PileBySize:
-      return "large island, dofs unknown: pgs, then ac_newton";
+      return "large island, dofs unknown: nncg, then ac_newton";
     case PlanRule::FactoredTry:
       return "body-space W: a short bgs try, then ac_newton";
     case PlanRule::FewActiveContacts:

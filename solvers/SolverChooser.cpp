@@ -58,8 +58,11 @@ ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
     }
     ++f.contacts;
     f.zeroIsExact = f.zeroIsExact && qN >= 0;
+    // Active: approaching (q_N < 0), resting (q_N = 0: touching bodies moving together, as every
+    // contact above the ground row of a fresh stack; they carry the load once it reaches them)
+    // or loaded at the last step (warm start). Only separating contacts are left out.
     const bool warm = problem.warmStart && (*problem.warmStart)[row] > 0;
-    if (!(qN < 0 || warm)) continue;
+    if (!(qN <= 0 || warm)) continue;
     ++f.activeContacts;
     double w = 0;
     if (diagonalKnown && normalDiagonal(problem, row, static_cast<int>(b), w) && w > 0) {
@@ -131,7 +134,7 @@ void SolverChooser::automatic(const ProblemFeatures& f, SolvePlan& plan) const {
     // converges like a chain's slowest mode (a 10-link chain needed > 50 bgs sweeps per step).
     return set(PlanRule::JointRowsOnly, {{"ac_newton"}, {"bgs"}});
   }
-  if (!newtonSized) return set(PlanRule::LargeIsland, {{"bgs"}, {"pgs"}});
+  if (!newtonSized) return set(PlanRule::LargeIsland, {{"nncg"}, {"pgs"}});
   if (!std::isnan(f.massRatio) && f.massRatio > settings_.newtonMassRatio)
     return set(PlanRule::MassRatio, {{"ac_newton"}, {"fb_newton"}, {"bgs"}});
   const bool pileByNu = !std::isnan(f.nu) && f.nu > settings_.pileNu;
@@ -140,7 +143,7 @@ void SolverChooser::automatic(const ProblemFeatures& f, SolvePlan& plan) const {
     // Gauss-Seidel first on piles and towers (Kaplas: pgs 2.7x faster than ac_newton); Newton as
     // the fallback for the stacks where Gauss-Seidel stalls (BoxesStack).
     return set(pileByNu ? PlanRule::PileByNu : PlanRule::PileBySize,
-               {{"pgs", 0, settings_.pileStallSweeps}, {"ac_newton"}, {"bgs"}});
+               {{"nncg", 0, settings_.pileStallSweeps}, {"ac_newton"}, {"bgs"}});
   }
   if (f.factored && settings_.factoredTrySweeps > 0)
     return set(PlanRule::FactoredTry,

@@ -21,6 +21,14 @@ SolverRegistry SolverRegistry::builtIn() {
   r.add({"bgs",
          "blocked Gauss-Seidel, exact local 3x3 contact solve (docs/solver-derivations.md 4)",
          [] { return std::make_unique<BgsSolver>(); }});
+  r.add({"nncg",
+         "bgs sweeps accelerated by nonsmooth nonlinear conjugate gradient (Silcowski, Erleben et "
+         "al. 2015): the Gauss-Seidel of piles, stacks and large islands",
+         [] {
+           BgsOptions options;
+           options.conjugateGradient = true;
+           return std::make_unique<BgsSolver>(options);
+         }});
   r.add({"ac_newton",
          "Alart-Curnier nonsmooth Newton, Goldstein-Price search, regularized sparse LU "
          "(docs/solver-derivations.md 5)",

@@ -18,6 +18,7 @@ void BgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
   };
   GaussSeidelSettings gs;
   gs.omega = options_.omega;
+  gs.conjugateGradient = options_.conjugateGradient;
   gs.omegaAfterStall = options_.omegaAfterStall;
   gs.stallWindow = options_.stallWindow;
   gs.shuffle = options_.shuffle;

@@ -1,8 +1,10 @@
 // Fallback promotion (engine/SolverPromotion; docs/benchmarks.md, "Long runs"). From step 330 of
-// pyramid_10 (tests/data/snapshots) pgs stagnates just above the tolerance and ac_newton finishes
-// the step; the impulses of that step carry a one-off correction, so with the warm start the next
-// steps alternate pgs -> ac_newton. With promotion (the default) the fallback runs first once more
-// and the alternation stops; without it the alternation shows.
+// pyramid_10 (tests/data/snapshots) plain Gauss-Seidel stagnated just above the tolerance and
+// ac_newton finished the step; the impulses of that step carried a one-off correction, so with the
+// warm start the next steps alternated Gauss-Seidel -> ac_newton. The cause was the stagnation:
+// the pile plan's nncg (Gauss-Seidel with conjugate-gradient momentum) converges there, and the
+// alternation is gone without promotion. Promotion stays a rule of the policy for the rare
+// fallback that remains.
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 #include <coulomb/engine/io/Snapshot.hpp>
@@ -70,13 +72,16 @@ TEST(FallbackPromotion, AutomaticPlanStopsThePgsNewtonAlternation) {
   EXPECT_LE(c.newtonSolves, 8);
 }
 
-TEST(FallbackPromotion, WithoutPromotionPgsAndNewtonAlternate) {
-  // WorldSettings::solve.promotion off: pgs always runs first, ac_newton as its fallback.
+TEST(FallbackPromotion, WithoutPromotionNoAlternation) {
+  // WorldSettings::solve.promotion off: the pile plan's first solver converges on its own (with
+  // plain pgs first, 50 or more of these 200 steps fell back to ac_newton, every other step).
   const LongRunCounts c = continuePyramid(false, kSteps);
   std::printf("no promotion: %d steps, %d fallbacks, %d ac_newton solves, residual max %.3g\n",
               c.steps, c.fallbacks, c.newtonSolves, c.maxResidual);
   EXPECT_EQ(c.promoted, 0);
-  EXPECT_GE(c.fallbacks, kSteps / 4);
+  EXPECT_EQ(c.unconverged, 0);
+  EXPECT_LE(c.maxResidual, 1e-6);
+  EXPECT_LE(c.fallbacks, 4);
 }
 
 TEST(FallbackPromotion, APendingPromotionIsPartOfTheSnapshot) {

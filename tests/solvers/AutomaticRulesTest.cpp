@@ -45,7 +45,8 @@ TEST(AutomaticRules, EveryRuleOfTheChooserInItsOrder) {
   EXPECT_EQ(attemptsText(ruleOf(rules, PlanRule::EqualityRowsOnly).attempts),
             "ldlt, ac_newton, bgs");
   EXPECT_EQ(attemptsText(ruleOf(rules, PlanRule::PileByNu).attempts),
-            "pgs (stall window 20), ac_newton, bgs");
+            "nncg (stall window 20), ac_newton, bgs");
+  EXPECT_EQ(attemptsText(ruleOf(rules, PlanRule::LargeIsland).attempts), "nncg, pgs");
   EXPECT_EQ(attemptsText(ruleOf(rules, PlanRule::FewActiveContacts).attempts),
             "bgs (cap 50), ac_newton, fb_newton");
   // Thresholds come from the settings, and a rule switched on by them is listed with its chain.

@@ -60,10 +60,10 @@ TEST(SolverChooser, NuDecidesBetweenNewtonAndGaussSeidel) {
   EXPECT_NEAR(wellPosed.features.nu, 0.5, 1e-12);
   const SolvePlan pile =
       SolverChooser().choose(p, {24}, SolverChoice::automatic(), {});  // nu = 2.5
-  EXPECT_EQ(pile.attempts.front().solver, "pgs") << pile.reason();
+  EXPECT_EQ(pile.attempts.front().solver, "nncg") << pile.reason();
   EXPECT_NE(pile.reason().find("nu = 2.5"), std::string::npos) << pile.reason();
   EXPECT_EQ(pile.attempts[1].solver, "ac_newton");  // Newton as the fallback of a stalled pile
-  // pgs gives way to Newton once it stagnates (ChooserSettings::pileStallSweeps); a user's
+  // nncg gives way to Newton once it stagnates (ChooserSettings::pileStallSweeps); a user's
   // request runs with the user's options.
   EXPECT_EQ(pile.attempts.front().stallWindow, ChooserSettings{}.pileStallSweeps);
   EXPECT_EQ(SolverChooser()
@@ -161,10 +161,10 @@ TEST(SolverChooser, AttemptLimitsOfAChoiceAreKept) {
   EXPECT_EQ(plan.attempts, chain.attempts);
   EXPECT_EQ(plan.optionsFor(plan.attempts[0]).maxIterations, 7);
   EXPECT_EQ(plan.optionsFor(plan.attempts[0]).tolerance, 1e-9);
-  SolverChoice preferred = SolverChoice::preferred("pgs");
+  SolverChoice preferred = SolverChoice::preferred("nncg");
   preferred.attempts[0].stallWindow = 9;
   const SolvePlan p = SolverChooser().choose(diagonalProblem(20, false), {24}, preferred, {});
   EXPECT_EQ(p.attempts.front(), preferred.attempts.front());
-  EXPECT_EQ(p.attempts[1].solver, "ac_newton");  // the pile's fallbacks, pgs not repeated
-  for (std::size_t k = 1; k < p.attempts.size(); ++k) EXPECT_NE(p.attempts[k].solver, "pgs");
+  EXPECT_EQ(p.attempts[1].solver, "ac_newton");  // the pile's fallbacks, nncg not repeated
+  for (std::size_t k = 1; k < p.attempts.size(); ++k) EXPECT_NE(p.attempts[k].solver, "nncg");
 }

@@ -7,8 +7,8 @@ using namespace coulomb::solvers;
 
 TEST(SolverRegistry, ExplicitTable) {
   SolverRegistry r = SolverRegistry::builtIn();
-  EXPECT_EQ(r.names(), (std::vector<std::string>{"pgs", "bgs", "ac_newton", "prox", "fb_newton",
-                                                 "ldlt", "lemke", "staggered"}));
+  EXPECT_EQ(r.names(), (std::vector<std::string>{"pgs", "bgs", "nncg", "ac_newton", "prox",
+                                                 "fb_newton", "ldlt", "lemke", "staggered"}));
   for (const SolverEntry& e : r.entries()) {
     EXPECT_FALSE(e.summary.empty());
     EXPECT_EQ(r.create(e.name)->name(), e.name);
