@@ -63,8 +63,11 @@ struct ChooserSettings {
 /// left; warm-started from it, the next step starts off by that correction in the slow mode the
 /// first solver could not reduce, and the two alternate. The rule runs the fallback once more,
 /// first, in the island's next step. A rule of the policy, off for named solvers and chains.
+/// Off by default: the alternation came from plain pgs stagnating just above the tolerance on
+/// piles, and the pile plan's nncg converges there (docs/solvers.md, "nncg"); the rule stays for a
+/// user's policy whose first solver does stagnate.
 struct PromotionRule {
-  bool enabled = true;
+  bool enabled = false;
   // [-] the first attempt counts as a near miss when it ended within this factor of the
   // tolerance. Default 10 (the alternation's signature: pgs ends at 1-2x the tolerance).
   double nearMiss = 10.0;

@@ -19,9 +19,10 @@ using namespace coulomb;
 
 namespace {
 
-void setPromotion(engine::World& world, bool on) {
+void setPromotion(engine::World& world, bool on, int iterationCap = 0) {
   solvers::SolvePolicy policy = world.settings().solve;
   policy.promotion.enabled = on;
+  if (iterationCap > 0) policy.options.maxIterations = iterationCap;
   world.setSolvePolicy(policy);
 }
 
@@ -60,15 +61,16 @@ constexpr int kSteps = 200;
 
 }  // namespace
 
-TEST(FallbackPromotion, AutomaticPlanStopsThePgsNewtonAlternation) {
+TEST(FallbackPromotion, WithPromotionThePilePlanStillConverges) {
+  // The rule itself is tested in tests/engine/SolverPromotionTest.cpp; here: on (as users may
+  // set it) it changes nothing where nothing falls back.
   const LongRunCounts c = continuePyramid(true, kSteps);
   std::printf(
       "promotion: %d steps, %d fallbacks, %d ac_newton solves, %d promoted, residual max %.3g\n",
       c.steps, c.fallbacks, c.newtonSolves, c.promoted, c.maxResidual);
   EXPECT_EQ(c.unconverged, 0);
   EXPECT_LE(c.maxResidual, 1e-6);
-  EXPECT_GE(c.promoted, 1);   // the mechanism ran
-  EXPECT_LE(c.fallbacks, 4);  // without it: every other step (the test below)
+  EXPECT_LE(c.fallbacks, 4);
   EXPECT_LE(c.newtonSolves, 8);
 }
 
@@ -86,12 +88,13 @@ TEST(FallbackPromotion, WithoutPromotionNoAlternation) {
 
 TEST(FallbackPromotion, APendingPromotionIsPartOfTheSnapshot) {
   // Save right after a fallback (a promotion pending), restore into a fresh World, and both go on
-  // bit for bit; the restored one runs the promoted solver first.
+  // bit for bit; the restored one runs the promoted solver first. A cap of one sweep per attempt
+  // makes the pile plan's first solver miss the tolerance narrowly, so Newton finishes steps.
   const engine::io::Scene scene = scenes::loadBuiltinScene("pyramid_10");
   engine::World world = engine::io::buildWorld(scene);
   engine::io::loadSnapshotFile(
       world, std::string(COULOMB_TEST_DATA_DIR) + "/snapshots/pyramid_10_step330.snap");
-  setPromotion(world, true);
+  setPromotion(world, true, 1);
   bool pending = false;
   for (int k = 0; k < 40 && !pending; ++k) {
     const engine::StepReport report = world.step(scene.settings.timeStep);

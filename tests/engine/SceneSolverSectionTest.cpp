@@ -54,7 +54,7 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
   EXPECT_EQ(s.solve.options.timeLimitSeconds, 0.5);
   EXPECT_FALSE(s.solve.options.useWarmStart);
   EXPECT_FALSE(s.solve.promotion.enabled);
-  EXPECT_TRUE(engine::WorldSettings{}.solve.promotion.enabled);
+  EXPECT_FALSE(engine::WorldSettings{}.solve.promotion.enabled);  // off by default since nncg
   EXPECT_EQ(s.contact.restitutionThreshold, 0.1);
   EXPECT_FALSE(s.contact.speculativeContacts);
   EXPECT_EQ(s.collision.speculativeMargin, 0.01);

@@ -9,7 +9,12 @@ using namespace coulomb;
 
 namespace {
 
-const solvers::PromotionRule kRule;  // the defaults
+// The default thresholds, switched on (the rule is off by default).
+const solvers::PromotionRule kRule = [] {
+  solvers::PromotionRule rule;
+  rule.enabled = true;
+  return rule;
+}();
 
 solvers::SolvePlan pilePlan() {
   solvers::SolvePlan plan;
