@@ -10,44 +10,15 @@
 #include <coulomb/engine/io/SceneLoader.hpp>
 
 #include "scenes/SceneRegistry.hpp"
+#include "support/HeapCounter.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <string>
 #include <vector>
-
-namespace {
-std::atomic<std::uint64_t> allocations{0};
-std::atomic<std::uint64_t> allocatedBytes{0};
-}  // namespace
-
-// Every heap allocation of this program, std containers and Eigen's (which calls malloc
-// directly) alike: glibc's malloc family is interposed here and forwards to glibc's own entry
-// points. Only this benchmark program does this; the library never touches the allocator.
-extern "C" {
-void* __libc_malloc(std::size_t);
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void* malloc(std::size_t n) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  allocatedBytes.fetch_add(n, std::memory_order_relaxed);
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t count, std::size_t size) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  allocatedBytes.fetch_add(count * size, std::memory_order_relaxed);
-  return __libc_calloc(count, size);
-}
-void* realloc(void* p, std::size_t n) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  allocatedBytes.fetch_add(n, std::memory_order_relaxed);
-  return __libc_realloc(p, n);
-}
-}
 
 int main(int argc, char** argv) {
   using namespace coulomb;
@@ -88,7 +59,7 @@ int main(int argc, char** argv) {
     long iterations = 0;
     double worst = 0.0;
     for (int k = 0; k < warmup + steps; ++k) {
-      const std::uint64_t a0 = allocations.load(), b0 = allocatedBytes.load();
+      const std::uint64_t a0 = support::heapAllocations(), b0 = support::heapBytes();
       const auto t0 = std::chrono::steady_clock::now();
       const engine::StepReport& report = world.step(h);  // the World's own: no copy
       const double t =
@@ -96,8 +67,8 @@ int main(int argc, char** argv) {
       if (k == 0) first = t;
       if (k < warmup) continue;
       ms.push_back(t);
-      allocs += allocations.load() - a0;
-      bytes += allocatedBytes.load() - b0;
+      allocs += support::heapAllocations() - a0;
+      bytes += support::heapBytes() - b0;
       for (const engine::IslandReport& island : report.islands) {
         for (const solvers::SolverReport& attempt : island.attempts)
           iterations += attempt.iterations;

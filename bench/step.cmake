@@ -1,5 +1,6 @@
 # Step cost per scene: ms per step (median, p99, max), first step, allocations per step, iterations
-# and residual (docs/benchmarks.md, "The step rebuilt").
-if(TARGET coulomb_samples)
-  coulomb_add_executable(StepCost SOURCES StepCost.cpp LINKS coulomb_samples)
+# and residual (docs/benchmarks.md, "The step rebuilt"). Counts allocations: not under the
+# sanitizers (no coulomb_heap_counter there).
+if(TARGET coulomb_samples AND TARGET coulomb_heap_counter)
+  coulomb_add_executable(StepCost SOURCES StepCost.cpp LINKS coulomb_samples coulomb_heap_counter)
 endif()
