@@ -49,9 +49,13 @@ std::vector<std::pair<AutomaticRule, ProblemFeatures>> examples(const ChooserSet
       "newton_max_unknowns = " +
           std::to_string(s.newtonMaxUnknowns) + " unknowns",
       joints);
+  // Warm-started examples: a cold start puts bgs_nncg where nncg is (said in the text).
+  ProblemFeatures large = contactIsland(s.newtonMaxUnknowns / 3 + 1);
+  large.warmStarted = true;
   add(PlanRule::LargeIsland,
-      "more than newton_max_unknowns = " + std::to_string(s.newtonMaxUnknowns) + " unknowns",
-      contactIsland(s.newtonMaxUnknowns / 3 + 1));
+      "more than newton_max_unknowns = " + std::to_string(s.newtonMaxUnknowns) +
+          " unknowns (from a cold start bgs_nncg instead of nncg)",
+      large);
   ProblemFeatures heavy = contactIsland(10);
   heavy.massRatio = 10.0 * s.newtonMassRatio;
   add(PlanRule::MassRatio,
@@ -59,15 +63,20 @@ std::vector<std::pair<AutomaticRule, ProblemFeatures>> examples(const ChooserSet
           number(s.newtonMassRatio),
       heavy);
   ProblemFeatures pile = contactIsland(10);
+  pile.warmStarted = true;
   pile.degreesOfFreedom = 6;
   pile.nu = 2.0 * s.pileNu + 1.0;
   add(PlanRule::PileByNu,
-      "a pile or tower: nu = (3 active contacts + rows) / dofs above pile_nu = " + number(s.pileNu),
+      "a pile or tower: nu = (3 active contacts + rows) / dofs above pile_nu = " +
+          number(s.pileNu) + " (from a cold start bgs_nncg instead of nncg)",
       pile);
+  ProblemFeatures captured = contactIsland(s.pileContactsWithoutDofs);
+  captured.warmStarted = true;
   add(PlanRule::PileBySize,
       "dofs unknown (a captured problem) and at least pile_contacts_without_dofs = " +
-          std::to_string(s.pileContactsWithoutDofs) + " contacts",
-      contactIsland(s.pileContactsWithoutDofs));
+          std::to_string(s.pileContactsWithoutDofs) +
+          " contacts (from a cold start bgs_nncg instead of nncg)",
+      captured);
   ProblemFeatures factored = contactIsland(10);
   factored.factored = true;
   add(PlanRule::FactoredTry,

@@ -16,7 +16,7 @@ namespace coulomb::solvers {
 /// 9), kept in the plan so that a report can show them next to the reason.
 struct ProblemFeatures {
   int contacts = 0;          // Contact3D blocks
-  int activeContacts = 0;    // q_N < 0 or warm-start r_N > 0 (likely to carry load)
+  int activeContacts = 0;    // q_N <= 0 or warm-start r_N > 0 (likely to carry load)
   int equalityRows = 0;      // bilateral (joint) rows
   int boundedRows = 0;       // motors, joint friction with a constant bound
   int unilateralRows = 0;    // limits, frictionless contacts
@@ -29,6 +29,7 @@ struct ProblemFeatures {
   double massRatio = std::numeric_limits<double>::quiet_NaN();
   bool zeroIsExact = false;  // all q_N >= 0 (contacts, unilateral rows) and no equality/bounded
   bool factored = false;     // W is body-space (BodySpaceDelassus): a sweep costs O(contacts)
+  bool warmStarted = false;  // some contact starts loaded (warm-start r_N > 0): not a cold start
 };
 
 /// One attempt of a plan: a registry solver with its own limits. A zero field takes the plan's

@@ -22,9 +22,14 @@ SolverRegistry SolverRegistry::builtIn() {
          "blocked Gauss-Seidel, exact local 3x3 contact solve (docs/solver-derivations.md 4)",
          [] { return std::make_unique<BgsSolver>(); }});
   r.add({"nncg",
-         "bgs sweeps accelerated by nonsmooth nonlinear conjugate gradient (Silcowski, Erleben et "
-         "al. 2015): the Gauss-Seidel of piles, stacks and large islands",
+         "pgs sweeps with nonsmooth nonlinear conjugate-gradient momentum (Silcowski, Erleben et "
+         "al. 2015): piles, stacks and large islands once warm-started",
          [] {
+           PgsOptions options;
+           options.conjugateGradient = true;
+           return std::make_unique<PgsSolver>(options);
+         }});
+  r.add({"bgs_nncg", "bgs sweeps with the same momentum: piles and stacks from a cold start", [] {
            BgsOptions options;
            options.conjugateGradient = true;
            return std::make_unique<BgsSolver>(options);

@@ -20,10 +20,10 @@ struct BgsOptions {
   // OneObject-i100000 in the prototypes where omega = 1 stays at 1e-3 (docs/solver-derivations.md
   // section 3).
   double omegaAfterStall = 0.7;
-  // Nonsmooth nonlinear conjugate gradient (the solver `nncg`; Silcowski, Erleben et al. 2015):
-  // momentum from the last sweeps' steps after every sweep, so the slow, smooth modes of a stack
-  // (its load reaching the bottom) converge in hundreds of sweeps instead of thousands. Off for
-  // `bgs`: a different iterate from the same sweeps changes which start a later fallback gets.
+  // The momentum of `nncg` on these sweeps (the registry's `bgs_nncg`; PgsOptions::
+  // conjugateGradient): from a cold start the exact local solves carry a stack's load up in a
+  // tenth of the sweeps pgs needs. Off for `bgs`: a different iterate from the same sweeps
+  // changes which start a later fallback of a plan gets.
   bool conjugateGradient = false;
   // [sweeps] stall test window (best residual down by < 1 %). Default 2000, not the 500 of
   // Algorithm 3.1: on the Capsules stacks bgs sits on plateaus for 1000-3000 sweeps and then
@@ -42,7 +42,7 @@ class BgsSolver final : public ContactSolver {
  public:
   explicit BgsSolver(BgsOptions options = {}) : options_(options) {}
   [[nodiscard]] std::string name() const override {
-    return options_.conjugateGradient ? "nncg" : "bgs";
+    return options_.conjugateGradient ? "bgs_nncg" : "bgs";
   }
   [[nodiscard]] bool worksInBodySpace() const override { return true; }
   [[nodiscard]] const BgsOptions& options() const { return options_; }

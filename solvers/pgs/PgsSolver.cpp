@@ -61,6 +61,7 @@ void PgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
   };
   GaussSeidelSettings gs;
   gs.omega = options_.omega;
+  gs.conjugateGradient = options_.conjugateGradient;
   gs.shuffle = options_.shuffle;
   gs.seed = options_.seed;
   gs.stallWindow = options_.stallWindow;

@@ -19,11 +19,14 @@ const AutomaticRule& ruleOf(const std::vector<AutomaticRule>& rules, PlanRule ru
 }
 
 /// n approaching contacts on an identity W.
-ContactProblem contacts(int n) {
+ContactProblem contacts(int n, bool warmStarted = true) {
   const Eigen::MatrixXd W = Eigen::MatrixXd::Identity(3 * n, 3 * n);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(3 * n);
   for (int c = 0; c < n; ++c) q[3 * c] = -1.0;
-  return ContactProblem::contacts(DelassusOperator::dense(W), q, std::vector<double>(n, 0.5), "p");
+  ContactProblem p =
+      ContactProblem::contacts(DelassusOperator::dense(W), q, std::vector<double>(n, 0.5), "p");
+  if (warmStarted) p.warmStart = -q;  // as after a step that loaded every contact
+  return p;
 }
 
 }  // namespace
@@ -69,6 +72,10 @@ TEST(AutomaticRules, ListedChainsAreWhatTheChooserDoesOnProblems) {
   };
   EXPECT_EQ(chosen(contacts(1), 0), ruleOf(rules, PlanRule::OneContact).attempts);
   EXPECT_EQ(chosen(contacts(20), 24), ruleOf(rules, PlanRule::PileByNu).attempts);  // nu 2.5
+  // From a cold start the pile's first solver is bgs_nncg (the rule's text says so).
+  std::vector<SolveAttempt> cold = ruleOf(rules, PlanRule::PileByNu).attempts;
+  cold.front().solver = "bgs_nncg";
+  EXPECT_EQ(chosen(contacts(20, false), 24), cold);
   EXPECT_EQ(chosen(contacts(20), 120), ruleOf(rules, PlanRule::WellPosed).attempts);
   EXPECT_EQ(chosen(contacts(2), 0), ruleOf(rules, PlanRule::FewActiveContacts).attempts);
 }

@@ -60,7 +60,15 @@ TEST(SolverChooser, NuDecidesBetweenNewtonAndGaussSeidel) {
   EXPECT_NEAR(wellPosed.features.nu, 0.5, 1e-12);
   const SolvePlan pile =
       SolverChooser().choose(p, {24}, SolverChoice::automatic(), {});  // nu = 2.5
-  EXPECT_EQ(pile.attempts.front().solver, "nncg") << pile.reason();
+  // A cold start (no warm start) gets bgs sweeps with momentum, a warm-started pile pgs sweeps.
+  EXPECT_EQ(pile.attempts.front().solver, "bgs_nncg") << pile.reason();
+  EXPECT_FALSE(pile.features.warmStarted);
+  ContactProblem warm = p;
+  warm.warmStart = Eigen::VectorXd::Zero(p.size());
+  (*warm.warmStart)[0] = 0.1;  // one contact carried load at the last step
+  const SolvePlan warmPile = SolverChooser().choose(warm, {24}, SolverChoice::automatic(), {});
+  EXPECT_TRUE(warmPile.features.warmStarted);
+  EXPECT_EQ(warmPile.attempts.front().solver, "nncg") << warmPile.reason();
   EXPECT_NE(pile.reason().find("nu = 2.5"), std::string::npos) << pile.reason();
   EXPECT_EQ(pile.attempts[1].solver, "ac_newton");  // Newton as the fallback of a stalled pile
   // nncg gives way to Newton once it stagnates (ChooserSettings::pileStallSweeps); a user's
@@ -161,10 +169,10 @@ TEST(SolverChooser, AttemptLimitsOfAChoiceAreKept) {
   EXPECT_EQ(plan.attempts, chain.attempts);
   EXPECT_EQ(plan.optionsFor(plan.attempts[0]).maxIterations, 7);
   EXPECT_EQ(plan.optionsFor(plan.attempts[0]).tolerance, 1e-9);
-  SolverChoice preferred = SolverChoice::preferred("nncg");
+  SolverChoice preferred = SolverChoice::preferred("bgs_nncg");
   preferred.attempts[0].stallWindow = 9;
   const SolvePlan p = SolverChooser().choose(diagonalProblem(20, false), {24}, preferred, {});
   EXPECT_EQ(p.attempts.front(), preferred.attempts.front());
-  EXPECT_EQ(p.attempts[1].solver, "ac_newton");  // the pile's fallbacks, nncg not repeated
-  for (std::size_t k = 1; k < p.attempts.size(); ++k) EXPECT_NE(p.attempts[k].solver, "nncg");
+  EXPECT_EQ(p.attempts[1].solver, "ac_newton");  // the pile's fallbacks, bgs_nncg not repeated
+  for (std::size_t k = 1; k < p.attempts.size(); ++k) EXPECT_NE(p.attempts[k].solver, "bgs_nncg");
 }

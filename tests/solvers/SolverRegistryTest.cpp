@@ -7,7 +7,7 @@ using namespace coulomb::solvers;
 
 TEST(SolverRegistry, ExplicitTable) {
   SolverRegistry r = SolverRegistry::builtIn();
-  EXPECT_EQ(r.names(), (std::vector<std::string>{"pgs", "bgs", "nncg", "ac_newton", "prox",
+  EXPECT_EQ(r.names(), (std::vector<std::string>{"pgs", "bgs", "nncg", "bgs_nncg", "ac_newton", "prox",
                                                  "fb_newton", "ldlt", "lemke", "staggered"}));
   for (const SolverEntry& e : r.entries()) {
     EXPECT_FALSE(e.summary.empty());
