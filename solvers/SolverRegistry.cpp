@@ -11,6 +11,20 @@
 #include <stdexcept>
 
 namespace coulomb::solvers {
+namespace {
+
+// A factory of `Solver` with its default options changed by `set` (variants under their own
+// registry names: nncg, bgs_nncg, prox).
+template <class Solver, class Options, class Set>
+std::function<std::unique_ptr<ContactSolver>()> variant(Set set) {
+  return [set] {
+    Options options;
+    set(options);
+    return std::make_unique<Solver>(options);
+  };
+}
+
+}  // namespace
 
 SolverRegistry SolverRegistry::builtIn() {
   SolverRegistry r;
@@ -24,16 +38,9 @@ SolverRegistry SolverRegistry::builtIn() {
   r.add({"nncg",
          "pgs sweeps with nonsmooth nonlinear conjugate-gradient momentum (Silcowski, Erleben et "
          "al. 2015): piles, stacks and large islands once warm-started",
-         [] {
-           PgsOptions options;
-           options.conjugateGradient = true;
-           return std::make_unique<PgsSolver>(options);
-         }});
-  r.add({"bgs_nncg", "bgs sweeps with the same momentum: piles and stacks from a cold start", [] {
-           BgsOptions options;
-           options.conjugateGradient = true;
-           return std::make_unique<BgsSolver>(options);
-         }});
+         variant<PgsSolver, PgsOptions>([](PgsOptions& o) { o.conjugateGradient = true; })});
+  r.add({"bgs_nncg", "bgs sweeps with the same momentum: piles and stacks from a cold start",
+         variant<BgsSolver, BgsOptions>([](BgsOptions& o) { o.conjugateGradient = true; })});
   r.add({"ac_newton",
          "Alart-Curnier nonsmooth Newton, Goldstein-Price search, regularized sparse LU "
          "(docs/solver-derivations.md 5)",
@@ -41,11 +48,8 @@ SolverRegistry SolverRegistry::builtIn() {
   r.add({"prox",
          "proximal-point outer loop around the Alart-Curnier Newton: FC(W + s I, q - s r_k), "
          "for singular W of redundant contacts (docs/solver-derivations.md 5.9)",
-         [] {
-           AcNewtonOptions options;
-           options.proximalFromStart = true;
-           return std::make_unique<AcNewtonSolver>(options);
-         }});
+         variant<AcNewtonSolver, AcNewtonOptions>(
+             [](AcNewtonOptions& o) { o.proximalFromStart = true; })});
   r.add({"fb_newton",
          "Fischer-Burmeister nonsmooth Newton for second-order cones, cancellation-free "
          "eigenvalue, Armijo search, shared Newton loop (docs/solver-derivations.md 6)",
