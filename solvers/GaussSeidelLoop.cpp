@@ -100,8 +100,7 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
   report.status = SolverStatus::MaxIterations;
   report.nativeResidualName = "common residual at the last check";
   int sweep = 0;
-  bool cg = false;
-  for (int b = 0; b < nb && settings.conjugateGradient; ++b) cg = cg || p.blocks[b].isContact();
+  const bool cg = settings.conjugateGradient;
   Eigen::VectorXd &previous = work.previous, &direction = work.direction;
   Eigen::VectorXd &previousDv = work.previousDv, &directionDv = work.directionDv;
   double previousStepNorm = -1.0;  // ||x_k - x_{k-1}||^2 of the last sweep; < 0: no direction yet
@@ -154,17 +153,18 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
       if (!(beta <= 1.0)) beta = 0.0;  // restart: p = 0
       previousStepNorm = stepNorm;
     }
-    auto accelerate = [&] {
+    auto accelerate = [&] {  // x += beta p, then p = x_new - x_old (= beta p + g); p = 0 on restart
       if (!cg) return;
       if (beta > 0) {
         r += beta * direction;
         if (body) dv += beta * directionDv;
       }
-      direction = r - previous;
-      if (body) directionDv = dv - previousDv;
-      if (beta == 0.0 && previousStepNorm > 0 && sweep > 1) {
-        direction.setZero();
-        if (body) directionDv.setZero();
+      if (beta == 0.0 && sweep > 1) {
+        direction.setZero(r.size());
+        if (body) directionDv.setZero(dv.size());
+      } else {
+        direction = r - previous;
+        if (body) directionDv = dv - previousDv;
       }
     };
     const int interval =
