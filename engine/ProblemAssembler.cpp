@@ -33,6 +33,22 @@ void inverseMassTimesJacobianT(const geometry::BodyState& state,
   out.bottomRows<3>() = inverseInertias[body] * jacobian.rightCols<3>().transpose();
 }
 
+// value += J_k,b (M_b^-1 J_j,b^T): fixed-size when both are contact blocks (3 x 6 times 6 x 3,
+// the common case), where Eigen's dynamic-size product costs several times the arithmetic.
+void addSharedBodyProduct(const joints::RowJacobian& jk, const Matrix6k& minvJtj,
+                          BlockMatrix& value) {
+  if (jk.rows() == 3 && minvJtj.cols() == 3) {
+    using J3 = Eigen::Matrix<double, 3, 6, Eigen::RowMajor>;
+    using MJ3 = Eigen::Matrix<double, 6, 3>;
+    const Eigen::Matrix3d product =
+        Eigen::Map<const J3>(jk.data()) * Eigen::Map<const MJ3>(minvJtj.data());
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) value(i, c) += product(i, c);
+    return;
+  }
+  value.noalias() += jk * minvJtj;
+}
+
 void appendSolverBlocks(const joints::RowBlock& block, std::vector<solvers::ConstraintBlock>& out) {
   using solvers::ConstraintBlock;
   switch (block.kind) {
@@ -215,8 +231,8 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
     out.problem.warmStart.reset();
   }
 
-  const bool dense = size <= settings_.denseRowLimit;
-  if (!dense && treeBlocks.empty() && settings_.bodySpace) {
+  const bool small = size <= settings_.sparseRowLimit;
+  if (!small && treeBlocks.empty() && settings_.bodySpace) {
     // Large islands of free bodies: W stays factored (J, M^-1 J^T per side; BodySpaceDelassus),
     // O(rows) to build; Gauss-Seidel never forms W, other solvers build it once on demand.
     std::vector<int>& sizes = scratch.blockSizes;
@@ -248,9 +264,6 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
 
   // W_kj = sum over the bodies b shared by blocks k and j (in increasing body index) of
   // J_k,b M_b^-1 J_j,b^T, plus the trees' part; built row block by row block, columns ascending.
-  Eigen::MatrixXd dummy;
-  Eigen::MatrixXd& denseW = dense ? reusable(scratch.dense) : dummy;
-  if (dense) denseW.setZero(size, size);
   SparseRowsBuilder sparse(rows, blockCount, scratch);
   std::vector<int>& columns = scratch.columns;
   std::vector<BlockMatrix>& strip = scratch.strip;
@@ -283,22 +296,17 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
         if (groups[g] < 0) continue;
         const joints::RowJacobian& jk = sidesOfGroup[g] ? bk.jacobianB : bk.jacobianA;
         for (const int side : {0, 1})
-          if (groupOfSide[2 * j + side] == groups[g]) value.noalias() += jk * minvJt[2 * j + side];
+          if (groupOfSide[2 * j + side] == groups[g])
+            addSharedBodyProduct(jk, minvJt[2 * j + side], value);
       }
       for (auto it = treeBegin; it != tree; ++it)
         if (it->col == j) value += it->value;
-      if (dense)
-        denseW.block(out.slots[k].offset, out.slots[j].offset, value.rows(), value.cols()) = value;
     }
-    if (!dense) sparse.addRowBlock(k, columns, strip);
+    sparse.addRowBlock(k, columns, strip);
   }
 
-  if (dense) {
-    out.problem.W = solvers::DelassusOperator::dense(scratch.dense);
-  } else {
-    sparse.build(reusable(scratch.sparse));
-    out.problem.W = solvers::DelassusOperator::blockSparse(scratch.sparse);
-  }
+  sparse.build(reusable(scratch.sparse));
+  out.problem.W = solvers::DelassusOperator::blockSparse(scratch.sparse);
 }
 
 }  // namespace coulomb::engine

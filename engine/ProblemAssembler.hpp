@@ -17,9 +17,9 @@ namespace coulomb::engine {
 class ArticulationStage;
 
 struct AssemblySettings {
-  // [scalar unknowns] Islands with at most this many rows get a dense W (a dense 3x3 block loop
-  // is faster than sparse bookkeeping below ~100 rows); larger ones a block-sparse W.
-  int denseRowLimit = 96;
+  // [scalar unknowns] Islands with at most this many rows get W's entries, block-sparse (every
+  // solver works on that form: a dense W was converted to it on every solve).
+  int sparseRowLimit = 96;
   // Larger islands without articulation rows get W factored (solvers::BodySpaceDelassus: J and
   // M^-1 J^T per block side, O(rows)) instead of block-sparse (O(nnz W), ~28 3x3 blocks per
   // contact on a pyramid). Gauss-Seidel then sweeps in body space; false = block-sparse W.
@@ -62,7 +62,6 @@ struct AssemblyScratch {
   std::vector<BlockMatrix> strip;
   std::vector<int> firstSolverBlock, csrBlockSizes, rowStart, blockColumns;
   std::vector<double> values;
-  std::shared_ptr<Eigen::MatrixXd> dense;
   std::shared_ptr<solvers::BlockSparseMatrix> sparse;
   std::shared_ptr<solvers::BodySpaceDelassus> bodySpace;
   DelassusBlocks treeBlocks;  // the articulations' part of W

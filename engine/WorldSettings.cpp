@@ -18,8 +18,8 @@ std::optional<std::string> WorldSettings::validate() const {
         << ")";
   } else if (auto bad = solve.validate(nullptr)) {
     out << *bad;
-  } else if (assembly.denseRowLimit < 0) {
-    out << "assembly dense row limit must be >= 0 (got " << assembly.denseRowLimit << ")";
+  } else if (assembly.sparseRowLimit < 0) {
+    out << "assembly sparse row limit must be >= 0 (got " << assembly.sparseRowLimit << ")";
   } else if (contact.penetration.iterations < 1 || !(contact.penetration.tolerance > 0.0)) {
     out << "penetration iterations must be >= 1 and tolerance > 0";
   } else if (contact.penetration.solver.empty()) {

@@ -291,11 +291,23 @@ void correctPredictedState(geometry::BodyState& state,
   w.predicted.resize(jointCount);
   // Predicted error of every joint at t+h with the current velocities; returns the largest |C|.
   const auto predictErrors = [&] {
+    // Each touched body once (a chain link is on two joints; the torque-free rotation is the
+    // cost), the others (world, static, kinematic) per joint side.
+    w.predictedPoses.resize(w.bodies.size());
+    for (std::size_t k = 0; k < w.bodies.size(); ++k)
+      w.predictedPoses[k] = predictPose(state, w.bodies[k], h);
+    const auto poseAt = [&](const geometry::BodyId& id) {
+      if (id.valid()) {
+        const auto it = std::lower_bound(w.bodies.begin(), w.bodies.end(), id.index);
+        if (it != w.bodies.end() && *it == id.index)
+          return w.predictedPoses[static_cast<std::size_t>(it - w.bodies.begin())];
+      }
+      return predictedPoseOf(state, id, h);
+    };
     double largest = 0.0;
     for (int j = 0; j < jointCount; ++j) {
       const joints::JointDef& def = *joints[j];
-      w.predicted[j] = joints::evaluateJoint(def, predictedPoseOf(state, def.bodyA, h),
-                                             predictedPoseOf(state, def.bodyB, h));
+      w.predicted[j] = joints::evaluateJoint(def, poseAt(def.bodyA), poseAt(def.bodyB));
       drift.segment(w.offset[j], w.predicted[j].rows()) = w.predicted[j].error;
       largest = std::max(largest, w.predicted[j].error.cwiseAbs().maxCoeff());
     }

@@ -85,6 +85,7 @@ struct PredictedStateWorkspace {
   std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>> minvJt;  // per touch
   std::vector<double> b, normal, entries;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> saved;
+  std::vector<geometry::Pose> predictedPoses;  // per touched body (as `bodies`), per pass
   Eigen::VectorXd drift, total, p, rhs, target;
 };
 

@@ -77,7 +77,7 @@ void transferSettings(Ar& ar, WorldSettings& s) {
   io(ar, s.defaultDensity);
   io(ar, s.unitQuaternionTolerance);
   transferPolicy(ar, s.solve);
-  io(ar, s.assembly.denseRowLimit);
+  io(ar, s.assembly.sparseRowLimit);
   io(ar, s.assembly.bodySpace);
   io(ar, s.contact.restitutionThreshold);
   io(ar, s.contact.speculativeContacts);
