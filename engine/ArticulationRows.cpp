@@ -1,5 +1,6 @@
-// Rows on articulation links: joint limits and loop closures as row blocks on the link proxies,
-// the trees' part of the Delassus operator and the impulses on joint velocities.
+// Rows on articulation links: which tree constraints are active (their rows are emitted by
+// joints/tree/TreeRowBlocks), the trees' part of the Delassus operator and the impulses on joint
+// velocities.
 //
 // A row side on link l (proxy origin c = the link frame origin) with body-twist Jacobian J_side
 // (k x 6, (linear, angular) about c) is the joint-space row J_side * twistJacobian(l, c)
@@ -13,6 +14,7 @@
 #include <coulomb/integrators/ArticulationIntegrator.hpp>
 #include <coulomb/joints/tree/ArticulationImpulse.hpp>
 #include <coulomb/joints/tree/TreeKinematics.hpp>
+#include <coulomb/joints/tree/TreeRowBlocks.hpp>
 
 #include <Eigen/Geometry>
 
@@ -98,89 +100,6 @@ void ArticulationStage::appendEdges(std::uint8_t owner, const RowContext& contex
   }
 }
 
-RowBlock ArticulationStage::jointRateBlock(const Record& r, int i, double s) const {
-  // u = s qd_i for link i's 1-DOF joint, written as the relative twist of the child and its
-  // parent along the joint axis (exactly s qd_i after the joint-space transform).
-  const joints::tree::TreeJoint& joint = r.model->link(i).joint;
-  const int parent = r.model->parent(i);
-  const Eigen::Vector3d axis = r.linkPoses[i].rotation * joint.axis;  // world
-  RowBlock block;
-  block.bodyB = r.linkBodies[i];
-  if (parent >= 0) block.bodyA = r.linkBodies[parent];
-  block.jacobianA = RowJacobian::Zero(1, 6);
-  block.jacobianB = RowJacobian::Zero(1, 6);
-  if (joint.type == TreeJointType::Revolute || joint.type == TreeJointType::Continuous) {
-    block.jacobianB.row(0).tail<3>() = s * axis.transpose();
-    block.jacobianA.row(0).tail<3>() = -s * axis.transpose();
-  } else {  // prismatic: velocity of the child origin relative to the parent point there
-    const Eigen::Vector3d lever =
-        r.linkPoses[i].position -
-        (parent >= 0 ? r.linkPoses[parent].position : Eigen::Vector3d::Zero());
-    block.jacobianB.row(0).head<3>() = s * axis.transpose();
-    block.jacobianA.row(0) << -s * axis.transpose(), -s * lever.cross(axis).transpose();
-  }
-  return block;
-}
-
-RowBlock ArticulationStage::motorBlock(const Record& r, int m, double h) const {
-  // Bounded row qd_i - target velocity = 0 with |lambda| <= maxEffort h.
-  const JointMotorDesc& motor = r.motors[m];
-  double velocity = motor.target;
-  if (motor.mode == JointMotorMode::Position) {
-    const double q = r.q[r.model->qIndex(motor.link)];
-    velocity = std::clamp(motor.positionGain * (motor.target - q) / h, -motor.maxVelocity,
-                          motor.maxVelocity);
-  }
-  RowBlock block = jointRateBlock(r, motor.link, 1.0);
-  block.kind = RowKind::Bounded;
-  block.bias = RowVector::Constant(1, -velocity);
-  block.lower = RowVector::Constant(1, -motor.maxEffort * h);
-  block.upper = RowVector::Constant(1, motor.maxEffort * h);
-  block.warmStart = RowVector::Constant(1, r.motorWarm[m]);
-  const auto articulation = static_cast<std::uint64_t>(&r - records_.data());
-  block.sourceKey = (articulation << 32) | kMotorBit | static_cast<std::uint64_t>(m);
-  return block;
-}
-
-RowBlock ArticulationStage::frictionBlock(const Record& r, int i, double h) const {
-  // Dry joint friction, the model of joints::JointDef::friction (JointLimitMotor.hpp): bounded
-  // row qd_i = 0 with |lambda| <= f h; it holds the joint while the load stays below f and
-  // slides against f above it.
-  RowBlock block = jointRateBlock(r, i, 1.0);
-  block.kind = RowKind::Bounded;
-  block.bias = RowVector::Zero(1);
-  block.lower = RowVector::Constant(1, -r.friction[i] * h);
-  block.upper = RowVector::Constant(1, r.friction[i] * h);
-  block.warmStart = RowVector::Constant(1, r.frictionWarm[i]);
-  const auto articulation = static_cast<std::uint64_t>(&r - records_.data());
-  block.sourceKey = (articulation << 32) | kFrictionBit | static_cast<std::uint64_t>(i);
-  return block;
-}
-
-RowBlock ArticulationStage::couplingBlock(std::int32_t a, int c, double h) const {
-  // Equality row qd_f - multiplier qd_l + errorReduction (q_f - multiplier q_l - offset) / h = 0.
-  // It spans up to four links, more than a RowBlock's two sides: its body Jacobians are zero, the
-  // bias carries J v* (v* = the tree's qd now), and treeRows gives the joint-space row itself
-  // (recognised by the tagged sourceKey).
-  const Record& r = records_[a];
-  const JointCouplingDesc& coupling = r.couplings[c];
-  const int f = coupling.follower, l = coupling.leader;
-  const double error =
-      r.q[r.model->qIndex(f)] - coupling.multiplier * r.q[r.model->qIndex(l)] - coupling.offset;
-  const double rate = r.qd[r.model->vIndex(f)] - coupling.multiplier * r.qd[r.model->vIndex(l)];
-  RowBlock block;
-  block.kind = RowKind::Equality;
-  block.bodyA = r.linkBodies[f];
-  block.bodyB = r.linkBodies[l];
-  block.jacobianA = RowJacobian::Zero(1, 6);
-  block.jacobianB = RowJacobian::Zero(1, 6);
-  block.bias = RowVector::Constant(1, rate + r.errorReduction * error / h);
-  block.warmStart = RowVector::Constant(1, r.couplingWarm[c]);
-  block.sourceKey = kCouplingTag | (static_cast<std::uint64_t>(a) << 32) | kCouplingBit |
-                    static_cast<std::uint64_t>(c);
-  return block;
-}
-
 std::optional<Eigen::RowVectorXd> ArticulationStage::couplingRow(const RowBlock& block) const {
   const std::uint64_t key = block.sourceKey;
   if (block.kind != RowKind::Equality || (key & kTagMask) != kCouplingTag ||
@@ -193,68 +112,54 @@ std::optional<Eigen::RowVectorXd> ArticulationStage::couplingRow(const RowBlock&
   const JointCouplingDesc& coupling = r.couplings[c];
   if (!block.bodyA.valid() || block.bodyA.index != r.linkBodies[coupling.follower].index)
     return std::nullopt;
-  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(r.model->nv());
-  row[r.model->vIndex(coupling.follower)] += 1.0;
-  row[r.model->vIndex(coupling.leader)] -= coupling.multiplier;
-  return row;
+  return joints::tree::couplingJointRow(*r.model, coupling);
 }
 
+// The rows themselves come from joints/tree (TreeRowBlocks); the stage adds their identity
+// (sourceKey: which articulation, which constraint), by which storeImpulses keeps warm starts.
 RowBlock ArticulationStage::rowBlockOf(const TreeConstraint& c, const geometry::BodyState& state,
                                        double h) const {
   const Record& r = records_[c.articulation];
+  const joints::tree::TreeRowFrame tree{*r.model, r.linkBodies, r.linkPoses,
+                                        r.q,      r.qd,         r.errorReduction};
+  const auto articulation = static_cast<std::uint64_t>(c.articulation) << 32;
+  const auto index = static_cast<std::uint64_t>(c.index);
   RowBlock block;
-  if (c.kind == ConstraintKind::Closure) {
-    const LoopClosureDesc& closure = r.closures[c.index];
-    const Eigen::Vector3d pA = r.linkPoses[closure.linkA].apply(closure.anchorA);
-    const Eigen::Vector3d pB =
-        closure.linkB >= 0 ? r.linkPoses[closure.linkB].apply(closure.anchorB) : closure.anchorB;
-    block.kind = RowKind::Equality;
-    block.bodyA = r.linkBodies[closure.linkA];
-    if (closure.linkB >= 0) block.bodyB = r.linkBodies[closure.linkB];
-    const Eigen::Vector3d rA = pA - state.poses[block.bodyA.index].position;
-    const Eigen::Vector3d rB = closure.linkB >= 0
-                                   ? Eigen::Vector3d(pB - state.poses[block.bodyB.index].position)
-                                   : Eigen::Vector3d::Zero();
-    const int k = static_cast<int>(std::count(closure.axes.begin(), closure.axes.end(), true));
-    block.jacobianA = RowJacobian::Zero(k, 6);
-    block.jacobianB = RowJacobian::Zero(k, 6);
-    block.bias.resize(k);
-    block.warmStart.resize(k);
-    int row = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!closure.axes[axis]) continue;
-      const Eigen::Vector3d e = Eigen::Vector3d::Unit(axis);
-      // u = e . (v_B(pB) - v_A(pA)); e . (w x r) = w . (r x e).
-      block.jacobianA.row(row) << -e.transpose(), -rA.cross(e).transpose();
-      block.jacobianB.row(row) << e.transpose(), rB.cross(e).transpose();
-      block.bias[row] = r.errorReduction * e.dot(pB - pA) / h;  // Baumgarte on the gap
-      block.warmStart[row] = r.closureWarm[c.index][axis];
-      ++row;
+  switch (c.kind) {
+    case ConstraintKind::Closure: {
+      const LoopClosureDesc& closure = r.closures[c.index];
+      const geometry::BodyId bodyA = r.linkBodies[closure.linkA];
+      const Eigen::Vector3d positionB =
+          closure.linkB >= 0 ? state.poses[r.linkBodies[closure.linkB].index].position
+                             : Eigen::Vector3d::Zero();
+      block = joints::tree::closureRow(tree, closure, state.poses[bodyA.index].position, positionB,
+                                       h, r.closureWarm[c.index]);
+      block.sourceKey = articulation | kClosureBit | index;
+      return block;
     }
-    block.sourceKey = (static_cast<std::uint64_t>(c.articulation) << 32) | kClosureBit |
-                      static_cast<std::uint64_t>(c.index);
-    return block;
+    case ConstraintKind::Motor:
+      block = joints::tree::motorRow(tree, r.motors[c.index], h, r.motorWarm[c.index]);
+      block.sourceKey = articulation | kMotorBit | index;
+      return block;
+    case ConstraintKind::Friction:
+      block =
+          joints::tree::frictionRow(tree, c.index, r.friction[c.index], h, r.frictionWarm[c.index]);
+      block.sourceKey = articulation | kFrictionBit | index;
+      return block;
+    case ConstraintKind::Coupling:
+      // Tagged so that treeRows recognises it among any blocks (its joint-space row is given).
+      block = joints::tree::couplingRow(tree, r.couplings[c.index], h, r.couplingWarm[c.index]);
+      block.sourceKey = kCouplingTag | articulation | kCouplingBit | index;
+      return block;
+    case ConstraintKind::Lower:
+    case ConstraintKind::Upper: {
+      const bool lower = c.kind == ConstraintKind::Lower;
+      block = joints::tree::limitRow(tree, c.index, lower, h,
+                                     lower ? r.lowerWarm[c.index] : r.upperWarm[c.index]);
+      block.sourceKey = articulation | (index << 1) | (lower ? 0u : 1u);
+      return block;
+    }
   }
-
-  if (c.kind == ConstraintKind::Motor) return motorBlock(r, c.index, h);
-  if (c.kind == ConstraintKind::Friction) return frictionBlock(r, c.index, h);
-  if (c.kind == ConstraintKind::Coupling) return couplingBlock(c.articulation, c.index, h);
-
-  // Limit of link i's 1-DOF joint: u = s qd_i >= 0.
-  const int i = c.index;
-  const joints::tree::TreeJoint& joint = r.model->link(i).joint;
-  const double s = c.kind == ConstraintKind::Lower ? 1.0 : -1.0;
-  block = jointRateBlock(r, i, s);
-  block.kind = RowKind::Unilateral;
-  const double q = r.q[r.model->qIndex(i)];
-  const double distance = c.kind == ConstraintKind::Lower ? q - joint.lower : joint.upper - q;
-  // Speculative while apart (reach the limit exactly), Baumgarte when past it.
-  block.bias =
-      RowVector::Constant(1, distance >= 0.0 ? distance / h : r.errorReduction * distance / h);
-  block.warmStart =
-      RowVector::Constant(1, c.kind == ConstraintKind::Lower ? r.lowerWarm[i] : r.upperWarm[i]);
-  block.sourceKey = (static_cast<std::uint64_t>(c.articulation) << 32) |
-                    (static_cast<std::uint64_t>(i) << 1) | (s > 0.0 ? 0u : 1u);
   return block;
 }
 

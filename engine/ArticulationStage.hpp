@@ -176,11 +176,6 @@ class ArticulationStage final : public RowSource {
   /// Fills trees_[0, treeCount_) for `rows` (storage kept between calls).
   void treeRows(const joints::RowSet& rows, const geometry::BodyState& state) const;
   TreeRows& treeOf(std::int32_t articulation) const;
-  [[nodiscard]] joints::RowBlock jointRateBlock(const Record& r, int link, double sign) const;
-  [[nodiscard]] joints::RowBlock motorBlock(const Record& r, int motor, double h) const;
-  [[nodiscard]] joints::RowBlock frictionBlock(const Record& r, int link, double h) const;
-  [[nodiscard]] joints::RowBlock couplingBlock(std::int32_t articulation, int coupling,
-                                               double h) const;
   /// The joint-space row of a coupling block (sourceKey tagged kCouplingTag), else nullopt.
   [[nodiscard]] std::optional<Eigen::RowVectorXd> couplingRow(const joints::RowBlock& block) const;
   [[nodiscard]] joints::RowBlock rowBlockOf(const TreeConstraint& c,
