@@ -194,33 +194,33 @@ void ArticulationStage::storeImpulses(const joints::RowSet& rows, joints::BlockR
   }
 }
 
-ArticulationStage::TreeRows& ArticulationStage::treeOf(std::int32_t articulation) const {
-  std::int32_t& index = treeIndex_[static_cast<std::size_t>(articulation)];
-  if (index < 0) {
-    index = static_cast<std::int32_t>(treeCount_++);
-    if (trees_.size() < treeCount_) trees_.emplace_back();
-    TreeRows& tree = trees_[static_cast<std::size_t>(index)];
-    const Record& r = records_[static_cast<std::size_t>(articulation)];
-    tree.articulation = articulation;
-    tree.response.reset(*r.model, r.q);
-    tree.blocks.clear();
-  }
-  return trees_[static_cast<std::size_t>(index)];
-}
-
-void ArticulationStage::treeRows(const joints::RowSet& rows,
-                                 const geometry::BodyState& state) const {
-  treeCount_ = 0;
-  treeIndex_.assign(records_.size(), -1);
+void ArticulationStage::mapRows(const joints::RowSet& rows, const geometry::BodyState& state,
+                                TreeRowMap& map) const {
+  map.count = 0;
+  map.treeIndex.assign(records_.size(), -1);
+  // The map's tree of `articulation`, started (ABA at q now) when first touched.
+  const auto treeOf = [&](std::int32_t articulation) -> TreeRowMap::Tree& {
+    std::int32_t& index = map.treeIndex[static_cast<std::size_t>(articulation)];
+    if (index < 0) {
+      index = static_cast<std::int32_t>(map.count++);
+      if (map.trees.size() < map.count) map.trees.emplace_back();
+      TreeRowMap::Tree& tree = map.trees[static_cast<std::size_t>(index)];
+      const Record& r = records_[static_cast<std::size_t>(articulation)];
+      tree.articulation = articulation;
+      tree.response.reset(*r.model, r.q);
+      tree.blocks.clear();
+    }
+    return map.trees[static_cast<std::size_t>(index)];
+  };
   // The next Jacobian slot of `tree`, sized k x nv (storage kept when the size repeats).
-  const auto nextJacobian = [](TreeRows& tree) -> Eigen::MatrixXd& {
+  const auto nextJacobian = [](TreeRowMap::Tree& tree) -> Eigen::MatrixXd& {
     if (tree.jacobians.size() <= tree.blocks.size()) tree.jacobians.emplace_back();
     return tree.jacobians[tree.blocks.size()];
   };
   for (int k = 0; k < static_cast<int>(rows.blocks.size()); ++k) {
     const RowBlock& block = rows.blocks[k];
     if (std::optional<Eigen::RowVectorXd> row = couplingRow(block)) {  // joint space already
-      TreeRows& tree = treeOf(linkOfBody_[block.bodyA.index].articulation);
+      TreeRowMap::Tree& tree = treeOf(linkOfBody_[block.bodyA.index].articulation);
       nextJacobian(tree) = *row;
       tree.blocks.push_back(k);
       continue;
@@ -231,17 +231,17 @@ void ArticulationStage::treeRows(const joints::RowSet& rows,
       const LinkRef link = linkOfBody_[body.index];
       const Record& r = records_[link.articulation];
       if (r.model->nv() == 0) continue;
-      TreeRows& tree = treeOf(link.articulation);
+      TreeRowMap::Tree& tree = treeOf(link.articulation);
       joints::tree::twistJacobian(*r.model, tree.response.kinematics(), link.link,
-                                  state.poses[body.index].position, twist_);
+                                  state.poses[body.index].position, map.twist);
       const joints::RowJacobian& side = sideB ? block.jacobianB : block.jacobianA;
       if (!tree.blocks.empty() && tree.blocks.back() == k) {
         // both sides on this tree (a loop closure)
-        tree.jacobians[tree.blocks.size() - 1].noalias() += side * twist_;
+        tree.jacobians[tree.blocks.size() - 1].noalias() += side * map.twist;
       } else {
         Eigen::MatrixXd& jointRows = nextJacobian(tree);
-        jointRows.resize(side.rows(), twist_.cols());
-        jointRows.noalias() = side * twist_;
+        jointRows.resize(side.rows(), map.twist.cols());
+        jointRows.noalias() = side * map.twist;
         tree.blocks.push_back(k);
       }
     }
@@ -249,24 +249,24 @@ void ArticulationStage::treeRows(const joints::RowSet& rows,
 }
 
 int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
-                                         const geometry::BodyState& state,
+                                         const geometry::BodyState& state, TreeRowMap& map,
                                          DelassusBlocks& blocks) const {
   int degreesOfFreedom = 0;
   blocks.clear();
-  treeRows(rows, state);
-  for (std::size_t t = 0; t < treeCount_; ++t) {
-    const TreeRows& tree = trees_[t];
+  mapRows(rows, state, map);
+  for (std::size_t t = 0; t < map.count; ++t) {
+    TreeRowMap::Tree& tree = map.trees[t];
     degreesOfFreedom += records_[tree.articulation].model->nv();
     // M^-1 J_t^T, one impulse-level ABA pass per row.
-    if (minvJt_.size() < tree.blocks.size()) minvJt_.resize(tree.blocks.size());
+    if (map.minvJt.size() < tree.blocks.size()) map.minvJt.resize(tree.blocks.size());
     for (std::size_t i = 0; i < tree.blocks.size(); ++i) {
       const Eigen::MatrixXd& J = tree.jacobians[i];
-      Eigen::MatrixXd& columns = minvJt_[i];
+      Eigen::MatrixXd& columns = map.minvJt[i];
       columns.resize(J.cols(), J.rows());
       for (Eigen::Index row = 0; row < J.rows(); ++row) {
-        jointRow_ = J.row(row).transpose();
-        tree.response.applyInverseMass(jointRow_, column_);
-        columns.col(row) = column_;
+        map.jointRow = J.row(row).transpose();
+        tree.response.applyInverseMass(map.jointRow, map.column);
+        columns.col(row) = map.column;
       }
     }
     // A tree with few joints cannot move along some row directions (a 1-DOF arm on a table has
@@ -277,7 +277,7 @@ int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
     double maxDiagonal = 0.0;
     for (std::size_t i = 0; i < tree.blocks.size(); ++i)
       for (Eigen::Index row = 0; row < tree.jacobians[i].rows(); ++row)
-        maxDiagonal = std::max(maxDiagonal, tree.jacobians[i].row(row).dot(minvJt_[i].col(row)));
+        maxDiagonal = std::max(maxDiagonal, tree.jacobians[i].row(row).dot(map.minvJt[i].col(row)));
     const double compliance = kRegularization * std::max(maxDiagonal, 1e-12);
     for (std::size_t i = 0; i < tree.blocks.size(); ++i)
       for (std::size_t j = 0; j < tree.blocks.size(); ++j) {
@@ -286,7 +286,7 @@ int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
         block.row = tree.blocks[i];
         block.col = tree.blocks[j];
         block.order = static_cast<int>(blocks.size());
-        block.value.noalias() = tree.jacobians[i] * minvJt_[j];
+        block.value.noalias() = tree.jacobians[i] * map.minvJt[j];
         block.shift = i == j ? compliance : 0.0;
       }
   }
@@ -308,42 +308,43 @@ int ArticulationStage::addDelassusBlocks(const joints::RowSet& rows,
   return degreesOfFreedom;
 }
 
-void ArticulationStage::jointImpulses(const std::vector<RowBlockSlot>& slots,
-                                      const Eigen::VectorXd& lambda) const {
-  for (std::size_t t = 0; t < treeCount_; ++t) {
-    TreeRows& tree = trees_[t];
-    jointTau_.setZero(records_[tree.articulation].model->nv());
+namespace {
+// Each mapped tree's `change` = M^-1 J_t^T lambda (a mapped tree has at least one block, whose
+// Jacobian has nv columns).
+void jointImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
+                   const Eigen::VectorXd& lambda) {
+  for (std::size_t t = 0; t < map.count; ++t) {
+    TreeRowMap::Tree& tree = map.trees[t];
+    map.jointTau.setZero(tree.jacobians.front().cols());
     for (std::size_t i = 0; i < tree.blocks.size(); ++i) {
       const RowBlockSlot& slot = slots[tree.blocks[i]];
-      jointTau_.noalias() += tree.jacobians[i].transpose() * lambda.segment(slot.offset, slot.rows);
+      map.jointTau.noalias() +=
+          tree.jacobians[i].transpose() * lambda.segment(slot.offset, slot.rows);
     }
-    tree.response.applyInverseMass(jointTau_, tree.change);  // M^-1 J_t^T lambda
+    tree.response.applyInverseMass(map.jointTau, tree.change);
   }
 }
+}  // namespace
 
-void ArticulationStage::applyImpulses(const joints::RowSet& rows,
-                                      const std::vector<RowBlockSlot>& slots,
+void ArticulationStage::applyImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
                                       const Eigen::VectorXd& lambda, geometry::BodyState& state) {
   if (!coversEveryRow(slots, lambda)) return;  // a solve that returned no impulses
-  treeRows(rows, state);
-  jointImpulses(slots, lambda);
-  for (std::size_t t = 0; t < treeCount_; ++t) {
-    Record& r = records_[trees_[t].articulation];
-    r.qd += trees_[t].change;
+  jointImpulses(map, slots, lambda);
+  for (std::size_t t = 0; t < map.count; ++t) {
+    Record& r = records_[map.trees[t].articulation];
+    r.qd += map.trees[t].change;
     updateProxies(r, state);
   }
 }
 
-void ArticulationStage::applyPseudoImpulses(const joints::RowSet& rows,
-                                            const std::vector<RowBlockSlot>& slots,
+void ArticulationStage::applyPseudoImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
                                             const Eigen::VectorXd& lambda, double h,
                                             geometry::BodyState& state) {
   if (!coversEveryRow(slots, lambda)) return;  // a solve that returned no impulses
-  treeRows(rows, state);
-  jointImpulses(slots, lambda);
-  for (std::size_t t = 0; t < treeCount_; ++t) {
-    Record& r = records_[trees_[t].articulation];
-    integrators::integrateConfiguration(*r.model, r.q, trees_[t].change, h);
+  jointImpulses(map, slots, lambda);
+  for (std::size_t t = 0; t < map.count; ++t) {
+    Record& r = records_[map.trees[t].articulation];
+    integrators::integrateConfiguration(*r.model, r.q, map.trees[t].change, h);
     updateProxies(r, state);
   }
 }

@@ -113,17 +113,21 @@ class ArticulationStage final : public RowSource {
   void storeImpulses(const joints::RowSet& rows, joints::BlockRange range,
                      const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda,
                      const RowContext& context) override;
-  /// For ProblemAssembler: adds J_t M^-1 J_t^T of every tree touched by `rows` to `blocks`;
-  /// returns the number of joint velocities involved (degrees of freedom).
+  /// The trees `rows` touch, in joint space (their Jacobians and impulse-level ABA at q now).
+  void mapRows(const joints::RowSet& rows, const geometry::BodyState& state, TreeRowMap& map) const;
+  /// For ProblemAssembler: maps `rows` (mapRows) and adds J_t M^-1 J_t^T of every tree touched
+  /// to `blocks`; returns the number of joint velocities involved (degrees of freedom).
   int addDelassusBlocks(const joints::RowSet& rows, const geometry::BodyState& state,
-                        DelassusBlocks& blocks) const;
-  /// qd += M^-1 J_t^T lambda for every tree touched by `rows`; refreshes the proxy velocities.
-  void applyImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
+                        TreeRowMap& map, DelassusBlocks& blocks) const;
+  /// qd += M^-1 J_t^T lambda for every tree of `map` (the rows' map, built at their assembly);
+  /// refreshes the proxy velocities.
+  void applyImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
                      const Eigen::VectorXd& lambda, geometry::BodyState& state);
   /// q <- q (+) h qd on the joint manifolds; proxies follow forward kinematics.
   void integratePositions(double h, geometry::BodyState& state);
-  /// Split impulse: q <- q (+) h M^-1 J_t^T p (pseudo-velocities, then discarded).
-  void applyPseudoImpulses(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
+  /// Split impulse: q <- q (+) h M^-1 J_t^T p (pseudo-velocities, then discarded), `map` that
+  /// of the pseudo problem's rows.
+  void applyPseudoImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
                            const Eigen::VectorXd& lambda, double h, geometry::BodyState& state);
   void clearForces();
 
@@ -161,38 +165,14 @@ class ArticulationStage final : public RowSource {
     ConstraintKind kind = ConstraintKind::Lower;
     std::int32_t index = 0;  // link (limits, friction), closure, motor or coupling
   };
-  // Per tree touched by a row set: the joint-space Jacobians of the row blocks on it.
-  struct TreeRows {
-    std::int32_t articulation = -1;
-    joints::tree::ArticulationImpulse response;
-    std::vector<int> blocks;                 // row blocks with a side on this tree
-    std::vector<Eigen::MatrixXd> jacobians;  // first blocks.size(): k x nv (both sides)
-    Eigen::VectorXd change;                  // M^-1 J_t^T lambda (jointImpulses)
-  };
-
   Record& record(geometry::ArticulationId id);
   [[nodiscard]] const Record& record(geometry::ArticulationId id) const;
   void updateProxies(Record& r, geometry::BodyState& state) const;
-  /// Fills trees_[0, treeCount_) for `rows` (storage kept between calls).
-  void treeRows(const joints::RowSet& rows, const geometry::BodyState& state) const;
-  TreeRows& treeOf(std::int32_t articulation) const;
   /// The joint-space row of a coupling block (sourceKey tagged kCouplingTag), else nullopt.
   [[nodiscard]] std::optional<Eigen::RowVectorXd> couplingRow(const joints::RowBlock& block) const;
   [[nodiscard]] joints::RowBlock rowBlockOf(const TreeConstraint& c,
                                             const geometry::BodyState& state, double h) const;
-  /// Each filled tree's `change` = M^-1 J_t^T lambda.
-  void jointImpulses(const std::vector<RowBlockSlot>& slots, const Eigen::VectorXd& lambda) const;
-
   std::vector<Record> records_;
-  // addDelassusBlocks' M^-1 J_t^T per row block and one impulse-level column, kept for storage.
-  mutable std::vector<Eigen::MatrixXd> minvJt_;
-  mutable Eigen::VectorXd column_, jointRow_, jointTau_;
-  // treeRows' trees (the first treeCount_ are this call's), tree index per articulation slot
-  // (-1: none), the twist Jacobian of one row side: kept between calls for their storage.
-  mutable std::vector<TreeRows> trees_;
-  mutable std::size_t treeCount_ = 0;
-  mutable std::vector<std::int32_t> treeIndex_;
-  mutable Eigen::Matrix<double, 6, Eigen::Dynamic> twist_;
   std::vector<LinkRef> linkOfBody_;          // per body slot
   std::vector<TreeConstraint> constraints_;  // this step's, indexed by the edges' items
 };

@@ -84,7 +84,9 @@ std::optional<solvers::SolverReport> correctPenetration(
   }
 
   AssembledProblem assembled;
-  if (velocityProblem != nullptr && velocityProblem->usable(normals.blocks.size())) {
+  const bool reusedVelocityProblem =
+      velocityProblem != nullptr && velocityProblem->usable(normals.blocks.size());
+  if (reusedVelocityProblem) {
     const auto contacts = static_cast<int>(normals.blocks.size());
     if (const auto* body = velocityProblem->W.bodySpaceOperator())  // stays in body space, O(rows)
       assembled.problem.W =
@@ -120,8 +122,12 @@ std::optional<solvers::SolverReport> correctPenetration(
         geometry::integrateWorldRotation(state.poses[i].rotation, angular[i], h);
     state.refreshWorldInertia(i);
   }
-  if (articulations != nullptr)
-    articulations->applyPseudoImpulses(normals, assembled.slots, outcome.impulses, h, state);
+  if (articulations != nullptr) {
+    // The assembled path mapped the trees already; the reused W did not.
+    if (reusedVelocityProblem) articulations->mapRows(normals, state, assembled.scratch.trees);
+    articulations->applyPseudoImpulses(assembled.scratch.trees, assembled.slots, outcome.impulses,
+                                       h, state);
+  }
   return outcome.report;
 }
 

@@ -216,8 +216,10 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
   // Rows on articulation links: the trees' joint-space part (their proxies carry no unknowns).
   DelassusBlocks& treeBlocks = scratch.treeBlocks;
   treeBlocks.clear();
+  scratch.trees.count = 0;  // no trees unless the stage maps some
   if (articulations != nullptr)
-    out.degreesOfFreedom += articulations->addDelassusBlocks(rows, state, treeBlocks);
+    out.degreesOfFreedom +=
+        articulations->addDelassusBlocks(rows, state, scratch.trees, treeBlocks);
 
   bool allWarm = blockCount > 0;
   for (const joints::RowBlock& b : rows.blocks) allWarm = allWarm && b.warmStart.size() == b.rows();

@@ -1,8 +1,10 @@
 #pragma once
 // Rows -> solver problem: the one translation between joints/ and solvers/ (docs/architecture.md
 // 1). W = J M^-1 J^T assembled block by block over the bodies the rows share, q = J v* + bias.
-// Dense for small islands, 3x3-block sparse for large ones. Static/kinematic bodies and the world
-// carry no unknowns (their inverse mass is 0), so their Jacobian halves never enter W.
+// 3x3-block sparse; large islands of free bodies keep W factored (body space). Static/kinematic
+// bodies and the world carry no unknowns (their inverse mass is 0), so their Jacobian halves never
+// enter W.
+#include <coulomb/engine/TreeRowMap.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/joints/RowSet.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
@@ -65,6 +67,7 @@ struct AssemblyScratch {
   std::shared_ptr<solvers::BlockSparseMatrix> sparse;
   std::shared_ptr<solvers::BodySpaceDelassus> bodySpace;
   DelassusBlocks treeBlocks;  // the articulations' part of W
+  TreeRowMap trees;           // the trees the rows touch, for W and then the impulses
 };
 
 struct AssembledProblem {

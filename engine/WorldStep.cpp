@@ -186,8 +186,8 @@ void World::warnIfUnsolved(const IslandWork& island, const solvers::SolverChoice
 void World::applyImpulses(IslandWork& island) {
   const Eigen::VectorXd& r = island.outcome.best.impulses;
   const std::vector<RowBlockSlot>& slots = island.assembled.slots;
-  engine::applyImpulses(island.rows, slots, r, state_, step_.inverseInertias());  // v+
-  articulations_.applyImpulses(island.rows, slots, r, state_);                    // qd+
+  engine::applyImpulses(island.rows, slots, r, state_, step_.inverseInertias());   // v+
+  articulations_.applyImpulses(island.assembled.scratch.trees, slots, r, state_);  // qd+
   const RowContext context = rowContext();
   for (const RowOwner owner : {kJointRows, kContactRows, kTreeRows})
     rowSource(owner).storeImpulses(island.rows, island.blocks[owner], slots, r, context);
