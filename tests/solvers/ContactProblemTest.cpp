@@ -2,6 +2,7 @@
 #include <coulomb/solvers/ContactProblem.hpp>
 
 #include <limits>
+#include <memory>
 
 using namespace coulomb::solvers;
 
@@ -38,6 +39,17 @@ TEST(ContactProblem, NamesTheFirstBrokenInvariant) {
   W(4, 1) = std::numeric_limits<double>::quiet_NaN();
   p.W = DelassusOperator::dense(W);
   EXPECT_TRUE(mentions(p.validate(), "W(4, 1) is not finite"));
+  // The same in block-sparse storage (what the World's assembler gives every island).
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    p = twoContacts();
+    W = Eigen::MatrixXd::Identity(6, 6);
+    W(4, 1) = bad;
+    auto sparse = std::make_shared<BlockSparseMatrix>();
+    sparse->assignFromDense(W, {3, 3});
+    p.W = DelassusOperator::blockSparse(sparse);
+    EXPECT_TRUE(mentions(p.validate(), "W(4, 1) is not finite")) << bad;
+  }
   p = twoContacts();
   W = Eigen::MatrixXd::Identity(6, 6);
   W(3, 3) = 0.0;
