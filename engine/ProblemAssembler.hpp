@@ -19,8 +19,8 @@ namespace coulomb::engine {
 class ArticulationStage;
 
 struct AssemblySettings {
-  // [scalar unknowns] Islands with at most this many rows get W's entries, block-sparse (every
-  // solver works on that form: a dense W was converted to it on every solve).
+  // [scalar unknowns] Islands with at most this many rows get W's entries, block-sparse (the
+  // form every solver works on; a dense W would be converted to it by every solve).
   int sparseRowLimit = 96;
   // Larger islands without articulation rows get W factored (solvers::BodySpaceDelassus: J and
   // M^-1 J^T per block side, O(rows)) instead of block-sparse (O(nnz W), ~28 3x3 blocks per
