@@ -16,16 +16,12 @@
 #include <coulomb/joints/tree/TreeKinematics.hpp>
 #include <coulomb/joints/tree/TreeRowBlocks.hpp>
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
 
 namespace coulomb::engine {
 
 using joints::RowBlock;
-using joints::RowJacobian;
 using joints::RowKind;
-using joints::RowVector;
 using joints::tree::TreeJointType;
 
 namespace {
