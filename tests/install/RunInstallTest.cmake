@@ -4,7 +4,7 @@ function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
   message("${out}")
   if(NOT status EQUAL 0)
-    message(FATAL_ERROR "command failed (${status}): ${ARGN}\n${err}")
+    message(FATAL_ERROR "command failed (${status}): ${ARGN}\n${out}\n${err}")
   endif()
 endfunction()
 run(${CMAKE_COMMAND} --install ${BINARY_DIR} --prefix ${WORK_DIR}/prefix)
@@ -12,3 +12,12 @@ run(${CMAKE_COMMAND} -S ${APP_SOURCE_DIR} -B ${WORK_DIR}/app -G ${GENERATOR}
     -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/app)
 run(${WORK_DIR}/app/consumer)
+if(PYTHON)
+  set(check "import coulomb, numpy as np, sys\n\
+assert coulomb.__file__.startswith(sys.argv[1]), coulomb.__file__\n\
+r = coulomb.solve(coulomb.ContactProblem(np.eye(3), [-1.0, 0.5, 0.0], [0.3]), 'ac_newton', tol=1e-12)\n\
+assert r.converged and abs(r.impulses[1] + 0.3) < 1e-9, r\n\
+print('coulomb python ok')")
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DIR} PYTHONDONTWRITEBYTECODE=1
+      ${PYTHON} -c "${check}" ${WORK_DIR}/prefix/${PYTHON_DIR})
+endif()

@@ -1,0 +1,11 @@
+#pragma once
+// The parts of the Python module (docs/python.md), one file each; Module.cpp calls them in order.
+#include <pybind11/pybind11.h>
+
+namespace coulomb::python {
+
+void bindProblem(pybind11::module_& m);  // Block, ContactProblem, fc3d files (ProblemBindings.cpp)
+void bindSolve(pybind11::module_& m);    // solvers(), solve(), residual() (SolveBindings.cpp)
+void bindCapture(pybind11::module_& m);  // scenes(), capture_problems() (CaptureBindings.cpp)
+
+}  // namespace coulomb::python
