@@ -13,13 +13,19 @@ shape or dtype is a ValueError naming the expected shape.
 from ._coulomb import (  # noqa: F401
     Block,
     CapturedProblem,
+    ConformanceResult,
     ContactProblem,
     Error,
+    RunResult,
     SolveResult,
     capture_problems,
+    conformance_cases,
     parse_fc3d,
     read_fc3d,
     residual,
+    run,
+    run_batch,
+    run_conformance,
     scenes,
     solve,
     solvers,
@@ -28,6 +34,7 @@ from ._coulomb import (  # noqa: F401
 )
 
 __all__ = [
-    "Block", "CapturedProblem", "ContactProblem", "Error", "SolveResult", "capture_problems",
-    "parse_fc3d", "read_fc3d", "residual", "scenes", "solve", "solvers", "velocity", "write_fc3d",
+    "Block", "CapturedProblem", "ConformanceResult", "ContactProblem", "Error", "RunResult",
+    "SolveResult", "capture_problems", "conformance_cases", "parse_fc3d", "read_fc3d", "residual",
+    "run", "run_batch", "run_conformance", "scenes", "solve", "solvers", "velocity", "write_fc3d",
 ]

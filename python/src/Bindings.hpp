@@ -7,5 +7,6 @@ namespace coulomb::python {
 void bindProblem(pybind11::module_& m);  // Block, ContactProblem, fc3d files (ProblemBindings.cpp)
 void bindSolve(pybind11::module_& m);    // solvers(), solve(), residual() (SolveBindings.cpp)
 void bindCapture(pybind11::module_& m);  // scenes(), capture_problems() (CaptureBindings.cpp)
+void bindRun(pybind11::module_& m);      // run(), run_batch(), conformance cases (RunBindings.cpp)
 
 }  // namespace coulomb::python

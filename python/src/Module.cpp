@@ -12,4 +12,5 @@ PYBIND11_MODULE(_coulomb, m) {
   coulomb::python::bindProblem(m);
   coulomb::python::bindSolve(m);
   coulomb::python::bindCapture(m);
+  coulomb::python::bindRun(m);
 }

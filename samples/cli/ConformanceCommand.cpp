@@ -2,6 +2,7 @@
 // conformance cases of docs/scene-specifications.md (samples/conformance) once per solver and
 // prints one row each: verdict, metric against its criterion, ms per step, residual, iterations,
 // fallbacks. The table of docs/conformance.md is this command's --markdown output.
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -23,6 +24,13 @@ struct ConformanceOptions {
   std::string markdown;
   bool list = false;
 };
+
+// As `coulomb run` prints it.
+std::string hashText(std::uint64_t hash) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
 
 std::string formatNumber(double value, const char* format) {
   char buffer[64];
@@ -48,7 +56,7 @@ void printRow(std::ostream& out, const Row& row) {
       << row.testCase->criterion << ")  " << formatNumber(row.run.msPerStep, "%.3f")
       << " ms/step  residual " << formatNumber(row.run.maxResidual, "%.1e") << "  iterations "
       << formatNumber(row.run.meanIterations, "%.1f") << " (max " << row.run.maxIterations
-      << ")  fallbacks " << row.run.fallbacks;
+      << ")  fallbacks " << row.run.fallbacks << "  state " << hashText(row.run.stateHash);
   if (!row.error.empty()) out << "  error: " << row.error;
   if (!row.run.detail.empty()) out << "  [" << row.run.detail << "]";
   out << "\n";

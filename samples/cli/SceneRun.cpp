@@ -1,7 +1,6 @@
 #include "SceneRun.hpp"
 
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/UrdfScene.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -9,56 +8,16 @@
 #include <iostream>
 
 #include "Commands.hpp"
-#include "scenes/SceneRegistry.hpp"
+#include "scenes/SceneOverrides.hpp"
 
 namespace coulomb::cli {
 
 engine::io::Scene loadScene(const std::string& nameOrPath, const SceneOverrides& overrides) {
-  engine::io::Scene scene;
   try {
-    if (nameOrPath.ends_with(".urdf"))  // a robot on a floor (docs/urdf.md "In a scene")
-      scene = engine::io::urdfFileScene(
-          nameOrPath,
-          overrides.urdfFloating ? engine::io::UrdfBase::Floating : engine::io::UrdfBase::Fixed,
-          !overrides.urdfLimp, {}, overrides.urdfMaximal);
-    else
-      scene = scenes::resolveScene(nameOrPath);
+    return scenes::resolveScene(nameOrPath, overrides);
   } catch (const engine::CoulombError& e) {
     throw CommandError(e.what());
   }
-  if (overrides.timeStep) {
-    if (!std::isfinite(*overrides.timeStep) || *overrides.timeStep <= 0.0)
-      throw CommandError("--dt must be finite and > 0 s");
-    scene.settings.timeStep = *overrides.timeStep;
-  }
-  if (overrides.steps) scene.steps = *overrides.steps;
-  if (overrides.solver) {
-    std::string error;
-    const std::optional<solvers::SolverChoice> choice =
-        solvers::parseSolverChoice(*overrides.solver, error);
-    if (!choice) throw CommandError("--solver: " + error);
-    scene.settings.solve.choice = *choice;
-    for (engine::BodyDesc& body : scene.bodies) body.solver.reset();
-  }
-  if (overrides.maxIterations) {
-    if (*overrides.maxIterations < 0) throw CommandError("--max-iter must be >= 0");
-    scene.settings.solve.options.maxIterations = *overrides.maxIterations;
-  }
-  if (overrides.tolerance) {
-    if (!std::isfinite(*overrides.tolerance) || *overrides.tolerance <= 0.0)
-      throw CommandError("--tol must be finite and > 0");
-    scene.settings.solve.options.tolerance = *overrides.tolerance;
-  }
-  if (overrides.friction) {
-    if (!std::isfinite(*overrides.friction) || *overrides.friction < 0.0)
-      throw CommandError("--mu must be finite and >= 0");
-    for (engine::BodyDesc& body : scene.bodies)
-      for (engine::ShapeDesc& shape : body.shapes) shape.material.friction = *overrides.friction;
-    for (engine::ArticulationDesc& articulation : scene.articulations)
-      for (auto& link : articulation.links)
-        for (engine::ShapeDesc& shape : link.shapes) shape.material.friction = *overrides.friction;
-  }
-  return scene;
 }
 
 engine::World buildWorldFor(const engine::io::Scene& scene) {

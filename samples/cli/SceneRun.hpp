@@ -18,19 +18,11 @@
 #include <string>
 #include <vector>
 
+#include "scenes/SceneOverrides.hpp"
+
 namespace coulomb::cli {
 
-struct SceneOverrides {
-  std::optional<std::string> solver;  // "auto", a registry name, "name!" or "a,b,c"
-  std::optional<double> timeStep;     // [s]
-  std::optional<std::uint64_t> steps;
-  std::optional<int> maxIterations;  // solver iteration cap per island (0 = solver default)
-  std::optional<double> tolerance;   // common relative residual target
-  std::optional<double> friction;    // mu of every shape's material (--mu)
-  bool urdfFloating = false;         // a .urdf scene: floating base (default fixed)
-  bool urdfLimp = false;             // a .urdf scene: no motors holding the joints
-  bool urdfMaximal = false;          // a .urdf scene: free bodies and maximal joints
-};
+using SceneOverrides = scenes::SceneOverrides;  // samples/scenes/SceneOverrides.hpp
 
 /// The scene `nameOrPath` (built-in name or JSON file) with the overrides applied. A solver
 /// override replaces the world's solver and clears every body's own `solver`, so that every

@@ -22,6 +22,7 @@ const engine::StepReport& RunRecorder::step(engine::World& world) {
     ++solves_;
   }
   fallbacks_ += last_.fallbacks();
+  stateHash_ = world.stateHash();  // outside the timed part
   return last_;
 }
 
@@ -32,6 +33,7 @@ void RunRecorder::finish(CaseRun& run) const {
   run.meanIterations = solves_ == 0 ? 0.0 : iterationSum_ / static_cast<double>(solves_);
   run.maxIterations = maxIterations_;
   run.fallbacks = fallbacks_;
+  run.stateHash = stateHash_;
 }
 
 engine::World buildCaseWorld(const std::string& scene, const CaseOptions& options) {

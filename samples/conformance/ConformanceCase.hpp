@@ -7,6 +7,7 @@
 #include <coulomb/engine/World.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
@@ -31,6 +32,9 @@ struct CaseRun {
   double meanIterations = 0.0;  // solver iterations per island solve
   int maxIterations = 0;
   std::size_t fallbacks = 0;  // fallback attempts over the run
+  // World::stateHash after the last step (of the last world the case stepped): equal across
+  // identical runs, whatever front end ran them (the CLI, the tests, Python).
+  std::uint64_t stateHash = 0;
 };
 
 struct ConformanceCase {
@@ -58,6 +62,7 @@ class RunRecorder {
   std::size_t solves_ = 0;
   int maxIterations_ = 0;
   std::size_t fallbacks_ = 0;
+  std::uint64_t stateHash_ = 0;
   engine::StepReport last_;
 };
 

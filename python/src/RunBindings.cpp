@@ -1,0 +1,335 @@
+// coulomb.run, coulomb.run_batch and the conformance cases (docs/python.md "Running scenes"):
+// a scene (built-in name, JSON or URDF file, or a dict in the JSON scene format) stepped in C++
+// with the GIL released, its final state returned as NumPy arrays. run_batch steps independent
+// worlds on C++ threads; each world is the same computation as alone, so the results are
+// bit-identical whatever the thread count.
+#include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/World.hpp>
+#include <coulomb/engine/io/SceneLoader.hpp>
+
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "Bindings.hpp"
+#include "NumpyConversion.hpp"
+#include "conformance/ConformanceCase.hpp"
+#include "scenes/SceneOverrides.hpp"
+
+namespace py = pybind11;
+using coulomb::engine::CoulombError;
+
+namespace coulomb::python {
+namespace {
+
+struct RunResult {
+  std::string scene;
+  std::uint64_t steps = 0;
+  double time = 0.0;      // [s] simulated
+  double timeStep = 0.0;  // [s]
+  std::uint64_t stateHash = 0;
+  std::vector<std::string> bodies;  // live bodies in slot order (scene order, then link proxies)
+  Eigen::MatrixXd positions, quaternions, linearVelocities, angularVelocities;
+  double energyStart = 0.0, energyEnd = 0.0;  // [J] World::mechanicalEnergy
+  std::uint64_t islandSolves = 0, iterations = 0, unconverged = 0, fallbacks = 0;
+  double maxResidual = 0.0;  // common e_rel, max over islands and steps
+  double maxJointGap = 0.0;  // [m] largest anchor gap after any step
+  double seconds = 0.0;      // wall clock of the steps
+};
+
+std::string hashText(std::uint64_t hash) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+scenes::SceneOverrides overridesFrom(std::optional<std::uint64_t> steps, std::optional<double> dt,
+                                     std::optional<std::string> solver, std::optional<double> tol,
+                                     std::optional<int> maxIterations, std::optional<double> mu) {
+  scenes::SceneOverrides o;
+  o.steps = steps;
+  o.timeStep = dt;
+  o.solver = std::move(solver);
+  o.tolerance = tol;
+  o.maxIterations = maxIterations;
+  o.friction = mu;
+  return o;
+}
+
+// A scene from what Python gave: a dict (the JSON scene format) or a name or path. Needs the GIL.
+engine::io::Scene sceneFrom(const py::handle& scene, const scenes::SceneOverrides& overrides) {
+  if (py::isinstance<py::dict>(scene)) {
+    const std::string text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+    const py::object name = scene.cast<py::dict>().attr("get")("name", "unnamed");
+    engine::io::Scene parsed =
+        engine::io::parseScene(text, "<scene dict '" + py::str(name).cast<std::string>() + "'>");
+    scenes::applyOverrides(parsed, overrides);
+    return parsed;
+  }
+  if (!py::isinstance<py::str>(scene) && !py::hasattr(scene, "__fspath__"))
+    throw py::value_error("scene: expected a built-in name, a file path or a dict, got " +
+                          py::str(py::type::of(scene)).cast<std::string>());
+  return scenes::resolveScene(py::str(scene).cast<std::string>(), overrides);
+}
+
+// Steps the scene's world; no Python object is touched (runs without the GIL).
+RunResult runScene(const engine::io::Scene& scene) {
+  engine::World world = engine::io::buildWorld(scene);
+  RunResult r;
+  r.scene = scene.name;
+  r.timeStep = scene.settings.timeStep;
+  r.energyStart = world.mechanicalEnergy();
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t i = 0; i < scene.steps; ++i) {
+    const engine::StepReport& report = world.step();
+    for (const engine::IslandReport& island : report.islands) {
+      ++r.islandSolves;
+      r.iterations += static_cast<std::uint64_t>(island.solve.iterations);
+      r.unconverged += island.converged() ? 0 : 1;
+      r.maxResidual = std::max(r.maxResidual, island.solve.residual);
+    }
+    r.fallbacks += report.fallbacks();
+    r.maxJointGap = std::max(r.maxJointGap, report.joints.maxLinearError);
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.steps = world.stepCount();
+  r.time = world.time();
+  r.stateHash = world.stateHash();
+  r.energyEnd = world.mechanicalEnergy();
+  const geometry::BodyState& s = world.state();
+  std::vector<std::size_t> live;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) live.push_back(i);
+  const auto n = static_cast<Eigen::Index>(live.size());
+  r.positions.resize(n, 3);
+  r.quaternions.resize(n, 4);
+  r.linearVelocities.resize(n, 3);
+  r.angularVelocities.resize(n, 3);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const std::size_t i = live[static_cast<std::size_t>(k)];
+    r.bodies.push_back(world.name(world.idAt(i)));
+    r.positions.row(k) = s.poses[i].position.transpose();
+    const Eigen::Quaterniond& q = s.poses[i].rotation;
+    r.quaternions.row(k) << q.w(), q.x(), q.y(), q.z();
+    r.linearVelocities.row(k) = s.linearVelocities[i].transpose();
+    r.angularVelocities.row(k) = s.angularVelocities[i].transpose();
+  }
+  return r;
+}
+
+RunResult run(const py::handle& scene, std::optional<std::uint64_t> steps, std::optional<double> dt,
+              std::optional<std::string> solver, std::optional<double> tol,
+              std::optional<int> maxIterations, std::optional<double> mu) {
+  const engine::io::Scene loaded =
+      sceneFrom(scene, overridesFrom(steps, dt, std::move(solver), tol, maxIterations, mu));
+  py::gil_scoped_release released;
+  return runScene(loaded);
+}
+
+std::vector<RunResult> runBatch(const py::iterable& scenes, int threads,
+                                std::optional<std::uint64_t> steps, std::optional<double> dt,
+                                std::optional<std::string> solver, std::optional<double> tol,
+                                std::optional<int> maxIterations, std::optional<double> mu) {
+  if (threads < 0) throw py::value_error("threads: expected >= 0 (0 = every core)");
+  const scenes::SceneOverrides overrides =
+      overridesFrom(steps, dt, std::move(solver), tol, maxIterations, mu);
+  std::vector<engine::io::Scene> loaded;
+  for (const py::handle& scene : scenes) loaded.push_back(sceneFrom(scene, overrides));
+  std::vector<RunResult> results(loaded.size());
+  std::vector<std::exception_ptr> errors(loaded.size());
+  {
+    py::gil_scoped_release released;
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t workers =
+        std::min<std::size_t>(loaded.size(), threads == 0 ? cores : static_cast<unsigned>(threads));
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t i = next++; i < loaded.size(); i = next++) {
+        try {
+          results[i] = runScene(loaded[i]);
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+    work();  // the calling thread is a worker too
+    for (std::thread& t : pool) t.join();
+  }
+  for (const std::exception_ptr& error : errors)  // the first failing scene, in input order
+    if (error) std::rethrow_exception(error);
+  return results;
+}
+
+py::dict toDict(const RunResult& r) {
+  py::dict d;
+  d["scene"] = r.scene;
+  d["steps"] = r.steps;
+  d["time"] = r.time;
+  d["time_step"] = r.timeStep;
+  d["state_hash"] = r.stateHash;
+  d["bodies"] = r.bodies;
+  d["positions"] = toNumpy(r.positions);
+  d["quaternions"] = toNumpy(r.quaternions);
+  d["linear_velocities"] = toNumpy(r.linearVelocities);
+  d["angular_velocities"] = toNumpy(r.angularVelocities);
+  d["energy_start"] = r.energyStart;
+  d["energy_end"] = r.energyEnd;
+  d["island_solves"] = r.islandSolves;
+  d["iterations"] = r.iterations;
+  d["unconverged"] = r.unconverged;
+  d["fallbacks"] = r.fallbacks;
+  d["max_residual"] = r.maxResidual;
+  d["max_joint_gap"] = r.maxJointGap;
+  d["seconds"] = r.seconds;
+  return d;
+}
+
+RunResult fromDict(const py::dict& d) {
+  RunResult r;
+  r.scene = d["scene"].cast<std::string>();
+  r.steps = d["steps"].cast<std::uint64_t>();
+  r.time = d["time"].cast<double>();
+  r.timeStep = d["time_step"].cast<double>();
+  r.stateHash = d["state_hash"].cast<std::uint64_t>();
+  r.bodies = d["bodies"].cast<std::vector<std::string>>();
+  const auto n = static_cast<Eigen::Index>(r.bodies.size());
+  r.positions = toMatrix(d["positions"], "positions", n, 3);
+  r.quaternions = toMatrix(d["quaternions"], "quaternions", n, 4);
+  r.linearVelocities = toMatrix(d["linear_velocities"], "linear_velocities", n, 3);
+  r.angularVelocities = toMatrix(d["angular_velocities"], "angular_velocities", n, 3);
+  r.energyStart = d["energy_start"].cast<double>();
+  r.energyEnd = d["energy_end"].cast<double>();
+  r.islandSolves = d["island_solves"].cast<std::uint64_t>();
+  r.iterations = d["iterations"].cast<std::uint64_t>();
+  r.unconverged = d["unconverged"].cast<std::uint64_t>();
+  r.fallbacks = d["fallbacks"].cast<std::uint64_t>();
+  r.maxResidual = d["max_residual"].cast<double>();
+  r.maxJointGap = d["max_joint_gap"].cast<double>();
+  r.seconds = d["seconds"].cast<double>();
+  return r;
+}
+
+void bindRunResult(py::module_& m) {
+  py::class_<RunResult>(m, "RunResult", "The end of a scene run (docs/python.md)")
+      .def_readonly("scene", &RunResult::scene)
+      .def_readonly("steps", &RunResult::steps)
+      .def_readonly("time", &RunResult::time, "[s] simulated time")
+      .def_readonly("time_step", &RunResult::timeStep)
+      .def_readonly("state_hash", &RunResult::stateHash,
+                    "hash of every pose and velocity (bit patterns), as `coulomb run` prints it")
+      .def_property_readonly("state_hash_hex",
+                             [](const RunResult& r) { return hashText(r.stateHash); })
+      .def_readonly("bodies", &RunResult::bodies, "names of the live bodies, in slot order")
+      .def_property_readonly(
+          "positions", [](const RunResult& r) { return toNumpy(r.positions); },
+          "(N, 3) centre of mass positions [m]")
+      .def_property_readonly(
+          "quaternions", [](const RunResult& r) { return toNumpy(r.quaternions); },
+          "(N, 4) orientations (w, x, y, z)")
+      .def_property_readonly(
+          "linear_velocities", [](const RunResult& r) { return toNumpy(r.linearVelocities); },
+          "(N, 3) [m/s]")
+      .def_property_readonly(
+          "angular_velocities", [](const RunResult& r) { return toNumpy(r.angularVelocities); },
+          "(N, 3) [rad/s], world frame")
+      .def_readonly("energy_start", &RunResult::energyStart, "[J] mechanical energy")
+      .def_readonly("energy_end", &RunResult::energyEnd, "[J]")
+      .def_readonly("island_solves", &RunResult::islandSolves)
+      .def_readonly("iterations", &RunResult::iterations, "solver iterations, summed")
+      .def_readonly("unconverged", &RunResult::unconverged, "island solves above the tolerance")
+      .def_readonly("fallbacks", &RunResult::fallbacks)
+      .def_readonly("max_residual", &RunResult::maxResidual)
+      .def_readonly("max_joint_gap", &RunResult::maxJointGap, "[m]")
+      .def_readonly("seconds", &RunResult::seconds, "wall clock of the steps")
+      .def("to_dict", &toDict)
+      .def("__repr__",
+           [](const RunResult& r) {
+             return "<coulomb.RunResult " + r.scene + ": " + std::to_string(r.steps) +
+                    " steps, state hash " + hashText(r.stateHash) + ">";
+           })
+      .def(py::pickle([](const RunResult& r) { return toDict(r); },
+                      [](const py::dict& d) { return fromDict(d); }));
+}
+
+void bindConformance(py::module_& m) {
+  py::class_<conformance::CaseRun>(m, "ConformanceResult",
+                                   "One conformance case with one solver (docs/conformance.md)")
+      .def_readonly("passed", &conformance::CaseRun::passed)
+      .def_readonly("metric", &conformance::CaseRun::metric)
+      .def_readonly("detail", &conformance::CaseRun::detail)
+      .def_readonly("steps", &conformance::CaseRun::steps)
+      .def_readonly("ms_per_step", &conformance::CaseRun::msPerStep)
+      .def_readonly("max_residual", &conformance::CaseRun::maxResidual)
+      .def_readonly("mean_iterations", &conformance::CaseRun::meanIterations)
+      .def_readonly("max_iterations", &conformance::CaseRun::maxIterations)
+      .def_readonly("fallbacks", &conformance::CaseRun::fallbacks)
+      .def_readonly("state_hash", &conformance::CaseRun::stateHash)
+      .def_property_readonly("state_hash_hex",
+                             [](const conformance::CaseRun& r) { return hashText(r.stateHash); })
+      .def("__repr__", [](const conformance::CaseRun& r) {
+        return std::string("<coulomb.ConformanceResult ") + (r.passed ? "pass" : "FAIL") + ": " +
+               r.detail + ">";
+      });
+  m.def(
+      "conformance_cases",
+      [] {
+        std::vector<py::dict> cases;
+        for (const conformance::ConformanceCase& c : conformance::allCases()) {
+          py::dict d;
+          d["name"] = c.name;
+          d["scene"] = c.scene;
+          d["section"] = c.section;
+          d["metric"] = c.metricName;
+          d["criterion"] = c.criterion;
+          cases.push_back(d);
+        }
+        return cases;
+      },
+      "The conformance cases (`coulomb conformance --list`): name, scene, section, metric, "
+      "criterion");
+  m.def(
+      "run_conformance",
+      [](const std::string& name, const std::string& solver, double scale) {
+        const conformance::ConformanceCase& c = conformance::findCase(name);
+        std::string error;
+        if (!solvers::parseSolverChoice(solver, error)) throw CoulombError("solver: " + error);
+        if (!(scale > 0.0)) throw py::value_error("scale: expected > 0");
+        py::gil_scoped_release released;
+        return c.run({solver, scale});
+      },
+      py::arg("case"), py::arg("solver") = "auto", py::arg("scale") = 1.0,
+      "Runs one conformance case with one solver, as `coulomb conformance --cases CASE "
+      "--solvers SOLVER` does: the verdict, the metric and the state hash are the CLI's.");
+}
+
+}  // namespace
+
+void bindRun(py::module_& m) {
+  bindRunResult(m);
+  m.def("run", &run, py::arg("scene"), py::kw_only(), py::arg("steps") = py::none(),
+        py::arg("dt") = py::none(), py::arg("solver") = py::none(), py::arg("tol") = py::none(),
+        py::arg("max_iterations") = py::none(), py::arg("mu") = py::none(),
+        "Runs a scene (built-in name, JSON or .urdf file, or a dict in the JSON scene format) "
+        "for `steps` steps (default: the scene's) and returns its final state. Overrides as "
+        "`coulomb run`: dt, solver, tol, max_iterations, mu (every shape's friction).");
+  m.def("run_batch", &runBatch, py::arg("scenes"), py::kw_only(), py::arg("threads") = 1,
+        py::arg("steps") = py::none(), py::arg("dt") = py::none(), py::arg("solver") = py::none(),
+        py::arg("tol") = py::none(), py::arg("max_iterations") = py::none(),
+        py::arg("mu") = py::none(),
+        "Runs many scenes on `threads` C++ threads (0 = every core) with the GIL released; the "
+        "results, in input order, are those of coulomb.run one by one.");
+  bindConformance(m);
+}
+
+}  // namespace coulomb::python

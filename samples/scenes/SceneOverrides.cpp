@@ -1,0 +1,61 @@
+#include "SceneOverrides.hpp"
+
+#include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/io/UrdfScene.hpp>
+
+#include <cmath>
+
+#include "SceneRegistry.hpp"
+
+namespace coulomb::scenes {
+
+using engine::CoulombError;
+
+void applyOverrides(engine::io::Scene& scene, const SceneOverrides& overrides) {
+  if (overrides.timeStep) {
+    if (!std::isfinite(*overrides.timeStep) || *overrides.timeStep <= 0.0)
+      throw CoulombError("time step override: must be finite and > 0 s");
+    scene.settings.timeStep = *overrides.timeStep;
+  }
+  if (overrides.steps) scene.steps = *overrides.steps;
+  if (overrides.solver) {
+    std::string error;
+    const std::optional<solvers::SolverChoice> choice =
+        solvers::parseSolverChoice(*overrides.solver, error);
+    if (!choice) throw CoulombError("solver override: " + error);
+    scene.settings.solve.choice = *choice;
+    for (engine::BodyDesc& body : scene.bodies) body.solver.reset();
+  }
+  if (overrides.maxIterations) {
+    if (*overrides.maxIterations < 0) throw CoulombError("iteration cap override: must be >= 0");
+    scene.settings.solve.options.maxIterations = *overrides.maxIterations;
+  }
+  if (overrides.tolerance) {
+    if (!std::isfinite(*overrides.tolerance) || *overrides.tolerance <= 0.0)
+      throw CoulombError("tolerance override: must be finite and > 0");
+    scene.settings.solve.options.tolerance = *overrides.tolerance;
+  }
+  if (overrides.friction) {
+    if (!std::isfinite(*overrides.friction) || *overrides.friction < 0.0)
+      throw CoulombError("friction override: must be finite and >= 0");
+    for (engine::BodyDesc& body : scene.bodies)
+      for (engine::ShapeDesc& shape : body.shapes) shape.material.friction = *overrides.friction;
+    for (engine::ArticulationDesc& articulation : scene.articulations)
+      for (auto& link : articulation.links)
+        for (engine::ShapeDesc& shape : link.shapes) shape.material.friction = *overrides.friction;
+  }
+}
+
+engine::io::Scene resolveScene(const std::string& nameOrPath, const SceneOverrides& overrides) {
+  engine::io::Scene scene =
+      nameOrPath.ends_with(".urdf")
+          ? engine::io::urdfFileScene(nameOrPath,
+                                      overrides.urdfFloating ? engine::io::UrdfBase::Floating
+                                                             : engine::io::UrdfBase::Fixed,
+                                      !overrides.urdfLimp, {}, overrides.urdfMaximal)
+          : resolveScene(nameOrPath);
+  applyOverrides(scene, overrides);
+  return scene;
+}
+
+}  // namespace coulomb::scenes

@@ -1,0 +1,34 @@
+#pragma once
+// A scene with a caller's overrides (time step, step count, solver, tolerance, iteration cap,
+// friction, URDF base): what `coulomb run --dt --steps --solver --tol --max-iter --mu` and
+// Python's coulomb.run(dt=, steps=, solver=, tol=, max_iterations=, mu=) change, in one place.
+#include <coulomb/engine/io/SceneLoader.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace coulomb::scenes {
+
+struct SceneOverrides {
+  std::optional<std::string> solver;  // "auto", a registry name, "name!" or "a,b,c"
+  std::optional<double> timeStep;     // [s]
+  std::optional<std::uint64_t> steps;
+  std::optional<int> maxIterations;  // solver iteration cap per island (0 = solver default)
+  std::optional<double> tolerance;   // common relative residual target
+  std::optional<double> friction;    // mu of every shape's material
+  bool urdfFloating = false;         // a .urdf scene: floating base (default fixed)
+  bool urdfLimp = false;             // a .urdf scene: no motors holding the joints
+  bool urdfMaximal = false;          // a .urdf scene: free bodies and maximal joints
+};
+
+/// Applies the overrides. A solver override replaces the world's solver and clears every body's
+/// own `solver`, so that every island uses it. Throws CoulombError naming the override and the
+/// problem ("time step override: must be finite and > 0 s").
+void applyOverrides(engine::io::Scene& scene, const SceneOverrides& overrides);
+
+/// The scene `nameOrPath` (a built-in name, a JSON file or a .urdf robot on a floor, docs/urdf.md
+/// "In a scene") with the overrides applied. Throws CoulombError.
+engine::io::Scene resolveScene(const std::string& nameOrPath, const SceneOverrides& overrides);
+
+}  // namespace coulomb::scenes
