@@ -16,8 +16,10 @@ from ._coulomb import (  # noqa: F401
     ConformanceResult,
     ContactProblem,
     Error,
+    Robot,
     RunResult,
     SolveResult,
+    World,
     capture_problems,
     conformance_cases,
     parse_fc3d,
@@ -34,7 +36,8 @@ from ._coulomb import (  # noqa: F401
 )
 
 __all__ = [
-    "Block", "CapturedProblem", "ConformanceResult", "ContactProblem", "Error", "RunResult",
+    "Block", "CapturedProblem", "ConformanceResult", "ContactProblem", "Error", "Robot", "RunResult",
     "SolveResult", "capture_problems", "conformance_cases", "parse_fc3d", "read_fc3d", "residual",
-    "run", "run_batch", "run_conformance", "scenes", "solve", "solvers", "velocity", "write_fc3d",
+    "run", "run_batch", "run_conformance", "scenes", "solve", "solvers", "velocity", "World",
+    "write_fc3d",
 ]

@@ -8,5 +8,6 @@ void bindProblem(pybind11::module_& m);  // Block, ContactProblem, fc3d files (P
 void bindSolve(pybind11::module_& m);    // solvers(), solve(), residual() (SolveBindings.cpp)
 void bindCapture(pybind11::module_& m);  // scenes(), capture_problems() (CaptureBindings.cpp)
 void bindRun(pybind11::module_& m);      // run(), run_batch(), conformance cases (RunBindings.cpp)
+void bindWorld(pybind11::module_& m);    // World, Robot (WorldBindings.cpp)
 
 }  // namespace coulomb::python

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_coulomb, m) {
   coulomb::python::bindSolve(m);
   coulomb::python::bindCapture(m);
   coulomb::python::bindRun(m);
+  coulomb::python::bindWorld(m);
 }

@@ -22,6 +22,7 @@
 
 #include "Bindings.hpp"
 #include "NumpyConversion.hpp"
+#include "SceneInput.hpp"
 #include "conformance/ConformanceCase.hpp"
 #include "scenes/SceneOverrides.hpp"
 
@@ -45,41 +46,6 @@ struct RunResult {
   double maxJointGap = 0.0;  // [m] largest anchor gap after any step
   double seconds = 0.0;      // wall clock of the steps
 };
-
-std::string hashText(std::uint64_t hash) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
-  return text;
-}
-
-scenes::SceneOverrides overridesFrom(std::optional<std::uint64_t> steps, std::optional<double> dt,
-                                     std::optional<std::string> solver, std::optional<double> tol,
-                                     std::optional<int> maxIterations, std::optional<double> mu) {
-  scenes::SceneOverrides o;
-  o.steps = steps;
-  o.timeStep = dt;
-  o.solver = std::move(solver);
-  o.tolerance = tol;
-  o.maxIterations = maxIterations;
-  o.friction = mu;
-  return o;
-}
-
-// A scene from what Python gave: a dict (the JSON scene format) or a name or path. Needs the GIL.
-engine::io::Scene sceneFrom(const py::handle& scene, const scenes::SceneOverrides& overrides) {
-  if (py::isinstance<py::dict>(scene)) {
-    const std::string text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
-    const py::object name = scene.cast<py::dict>().attr("get")("name", "unnamed");
-    engine::io::Scene parsed =
-        engine::io::parseScene(text, "<scene dict '" + py::str(name).cast<std::string>() + "'>");
-    scenes::applyOverrides(parsed, overrides);
-    return parsed;
-  }
-  if (!py::isinstance<py::str>(scene) && !py::hasattr(scene, "__fspath__"))
-    throw py::value_error("scene: expected a built-in name, a file path or a dict, got " +
-                          py::str(py::type::of(scene)).cast<std::string>());
-  return scenes::resolveScene(py::str(scene).cast<std::string>(), overrides);
-}
 
 // Steps the scene's world; no Python object is touched (runs without the GIL).
 RunResult runScene(const engine::io::Scene& scene) {

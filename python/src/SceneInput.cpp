@@ -1,0 +1,44 @@
+#include "SceneInput.hpp"
+
+#include <cstdio>
+#include <utility>
+
+namespace py = pybind11;
+
+namespace coulomb::python {
+
+std::string hashText(std::uint64_t hash) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+scenes::SceneOverrides overridesFrom(std::optional<std::uint64_t> steps, std::optional<double> dt,
+                                     std::optional<std::string> solver, std::optional<double> tol,
+                                     std::optional<int> maxIterations, std::optional<double> mu) {
+  scenes::SceneOverrides o;
+  o.steps = steps;
+  o.timeStep = dt;
+  o.solver = std::move(solver);
+  o.tolerance = tol;
+  o.maxIterations = maxIterations;
+  o.friction = mu;
+  return o;
+}
+
+engine::io::Scene sceneFrom(const py::handle& scene, const scenes::SceneOverrides& overrides) {
+  if (py::isinstance<py::dict>(scene)) {
+    const std::string text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+    const py::object name = scene.cast<py::dict>().attr("get")("name", "unnamed");
+    engine::io::Scene parsed =
+        engine::io::parseScene(text, "<scene dict '" + py::str(name).cast<std::string>() + "'>");
+    scenes::applyOverrides(parsed, overrides);
+    return parsed;
+  }
+  if (!py::isinstance<py::str>(scene) && !py::hasattr(scene, "__fspath__"))
+    throw py::value_error("scene: expected a built-in name, a file path or a dict, got " +
+                          py::str(py::type::of(scene)).cast<std::string>());
+  return scenes::resolveScene(py::str(scene).cast<std::string>(), overrides);
+}
+
+}  // namespace coulomb::python

@@ -1,0 +1,27 @@
+#pragma once
+// Scenes as Python gives them (a built-in name, a JSON or URDF file path, or a dict in the JSON
+// scene format) with the CLI's overrides, for coulomb.run, run_batch and World.
+#include <coulomb/engine/io/SceneLoader.hpp>
+
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "scenes/SceneOverrides.hpp"
+
+namespace coulomb::python {
+
+/// As `coulomb run` prints a state hash: 16 hex digits.
+std::string hashText(std::uint64_t hash);
+
+scenes::SceneOverrides overridesFrom(std::optional<std::uint64_t> steps, std::optional<double> dt,
+                                     std::optional<std::string> solver, std::optional<double> tol,
+                                     std::optional<int> maxIterations, std::optional<double> mu);
+
+/// The scene with the overrides applied. Needs the GIL; throws CoulombError (bad scene) or
+/// ValueError (not a name, path or dict).
+engine::io::Scene sceneFrom(const pybind11::handle& scene, const scenes::SceneOverrides& overrides);
+
+}  // namespace coulomb::python
