@@ -202,3 +202,38 @@ SceneJoint parseJoint(const JsonNode& node, const std::vector<BodyDesc>& bodies,
 }
 
 }  // namespace coulomb::engine::io
+
+namespace coulomb::engine::io {
+
+joints::JointDef parseLiveJoint(std::string_view text, const World& world,
+                                const std::string& source) {
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::exception& e) {
+    throw CoulombError(source + ": invalid JSON: " + e.what());
+  }
+  // The live bodies as the scene parser knows bodies: names and reference-frame poses (the
+  // World keeps COM frames; the reference frame sits -R c from the COM, same axes).
+  std::vector<BodyDesc> bodies;
+  std::vector<geometry::BodyId> ids;
+  const geometry::BodyState& state = world.state();
+  for (std::size_t slot = 0; slot < state.size(); ++slot) {
+    if (!state.alive[slot]) continue;
+    const geometry::BodyId id = world.idAt(slot);
+    BodyDesc body;
+    body.name = world.name(id);
+    body.pose = state.poses[slot];
+    body.pose.position -= body.pose.rotation * world.massProperties(id).centerOfMass;
+    bodies.push_back(std::move(body));
+    ids.push_back(id);
+  }
+  const SceneJoint joint =
+      parseJoint(JsonNode(document, source, "joint"), bodies, world.settings().jointStabilization);
+  joints::JointDef def = joint.def;
+  def.bodyA = joint.bodyA < 0 ? geometry::BodyId{} : ids[static_cast<std::size_t>(joint.bodyA)];
+  def.bodyB = joint.bodyB < 0 ? geometry::BodyId{} : ids[static_cast<std::size_t>(joint.bodyB)];
+  return def;
+}
+
+}  // namespace coulomb::engine::io

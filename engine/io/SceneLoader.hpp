@@ -42,6 +42,13 @@ Scene loadSceneFile(const std::filesystem::path& file);
 Scene parseScene(std::string_view text, const std::string& source,
                  const std::filesystem::path& baseDirectory = {});
 
+/// A joint in the "joints" format of docs/scene-format.md whose ends name live bodies of `world`
+/// ("world" or absent = the world); frames given in world coordinates ("anchor", "axis",
+/// "normal") are taken at the bodies' present poses. Returns the definition with its body ids,
+/// ready for World::createJoint. Errors: CoulombError "<source>: joint.<path>: <problem>".
+joints::JointDef parseLiveJoint(std::string_view text, const World& world,
+                                const std::string& source);
+
 /// A World holding the scene's bodies (in file order: body i gets slot i), articulations and joints
 /// (joint i gets JointId {i, 0}). Creation errors are reported as "<source>: bodies[i]..." or
 /// "<source>: joints[i]: ...".

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
@@ -22,6 +23,7 @@
 
 #include "Bindings.hpp"
 #include "NumpyConversion.hpp"
+#include "PyWorld.hpp"
 #include "SceneInput.hpp"
 #include "conformance/ConformanceCase.hpp"
 #include "scenes/SceneOverrides.hpp"
@@ -47,15 +49,14 @@ struct RunResult {
   double seconds = 0.0;      // wall clock of the steps
 };
 
-// Steps the scene's world; no Python object is touched (runs without the GIL).
-RunResult runScene(const engine::io::Scene& scene) {
-  engine::World world = engine::io::buildWorld(scene);
+// Steps `world` and reads its final state; no Python object is touched (runs without the GIL).
+RunResult runWorld(engine::World& world, std::uint64_t steps, std::string name) {
   RunResult r;
-  r.scene = scene.name;
-  r.timeStep = scene.settings.timeStep;
+  r.scene = std::move(name);
+  r.timeStep = world.settings().timeStep;
   r.energyStart = world.mechanicalEnergy();
   const auto start = std::chrono::steady_clock::now();
-  for (std::uint64_t i = 0; i < scene.steps; ++i) {
+  for (std::uint64_t i = 0; i < steps; ++i) {
     const engine::StepReport& report = world.step();
     for (const engine::IslandReport& island : report.islands) {
       ++r.islandSolves;
@@ -92,6 +93,11 @@ RunResult runScene(const engine::io::Scene& scene) {
   return r;
 }
 
+RunResult runScene(const engine::io::Scene& scene) {
+  engine::World world = engine::io::buildWorld(scene);
+  return runWorld(world, scene.steps, scene.name);
+}
+
 RunResult run(const py::handle& scene, std::optional<std::uint64_t> steps, std::optional<double> dt,
               std::optional<std::string> solver, std::optional<double> tol,
               std::optional<int> maxIterations, std::optional<double> mu) {
@@ -101,27 +107,46 @@ RunResult run(const py::handle& scene, std::optional<std::uint64_t> steps, std::
   return runScene(loaded);
 }
 
-std::vector<RunResult> runBatch(const py::iterable& scenes, int threads,
+// One entry of run_batch: a scene to build, or a World (coulomb.World) to step in place.
+struct BatchItem {
+  std::optional<engine::io::Scene> scene;
+  std::shared_ptr<PyWorld> world;
+};
+
+std::vector<RunResult> runBatch(const py::iterable& items, int threads,
                                 std::optional<std::uint64_t> steps, std::optional<double> dt,
                                 std::optional<std::string> solver, std::optional<double> tol,
                                 std::optional<int> maxIterations, std::optional<double> mu) {
   if (threads < 0) throw py::value_error("threads: expected >= 0 (0 = every core)");
   const scenes::SceneOverrides overrides =
       overridesFrom(steps, dt, std::move(solver), tol, maxIterations, mu);
-  std::vector<engine::io::Scene> loaded;
-  for (const py::handle& scene : scenes) loaded.push_back(sceneFrom(scene, overrides));
-  std::vector<RunResult> results(loaded.size());
-  std::vector<std::exception_ptr> errors(loaded.size());
+  std::vector<BatchItem> batch;
+  for (const py::handle& item : items) {
+    if (py::isinstance<PyWorld>(item)) {
+      if (!steps) throw py::value_error("steps: required when the batch holds worlds");
+      auto world = item.cast<std::shared_ptr<PyWorld>>();
+      for (const BatchItem& other : batch)
+        if (other.world == world)
+          throw py::value_error(
+              "scenes: the same World twice (it would be stepped by two threads)");
+      batch.push_back({std::nullopt, std::move(world)});
+    } else {
+      batch.push_back({sceneFrom(item, overrides), nullptr});
+    }
+  }
+  std::vector<RunResult> results(batch.size());
+  std::vector<std::exception_ptr> errors(batch.size());
   {
     py::gil_scoped_release released;
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t workers =
-        std::min<std::size_t>(loaded.size(), threads == 0 ? cores : static_cast<unsigned>(threads));
+        std::min<std::size_t>(batch.size(), threads == 0 ? cores : static_cast<unsigned>(threads));
     std::atomic<std::size_t> next{0};
     auto work = [&] {
-      for (std::size_t i = next++; i < loaded.size(); i = next++) {
+      for (std::size_t i = next++; i < batch.size(); i = next++) {
         try {
-          results[i] = runScene(loaded[i]);
+          results[i] = batch[i].world ? runWorld(batch[i].world->world, *steps, "world")
+                                      : runScene(*batch[i].scene);
         } catch (...) {
           errors[i] = std::current_exception();
         }
@@ -132,7 +157,7 @@ std::vector<RunResult> runBatch(const py::iterable& scenes, int threads,
     work();  // the calling thread is a worker too
     for (std::thread& t : pool) t.join();
   }
-  for (const std::exception_ptr& error : errors)  // the first failing scene, in input order
+  for (const std::exception_ptr& error : errors)  // the first failing item, in input order
     if (error) std::rethrow_exception(error);
   return results;
 }
@@ -293,8 +318,9 @@ void bindRun(py::module_& m) {
         py::arg("steps") = py::none(), py::arg("dt") = py::none(), py::arg("solver") = py::none(),
         py::arg("tol") = py::none(), py::arg("max_iterations") = py::none(),
         py::arg("mu") = py::none(),
-        "Runs many scenes on `threads` C++ threads (0 = every core) with the GIL released; the "
-        "results, in input order, are those of coulomb.run one by one.");
+        "Runs many scenes (names, files, dicts) or coulomb.World objects (stepped in place by "
+        "`steps`) on `threads` C++ threads (0 = every core) with the GIL released; the results, "
+        "in input order, are those of running them one by one.");
   bindConformance(m);
 }
 

@@ -21,6 +21,7 @@
 
 #include "Bindings.hpp"
 #include "NumpyConversion.hpp"
+#include "PyWorld.hpp"
 #include "SceneInput.hpp"
 
 namespace py = pybind11;
@@ -30,11 +31,6 @@ using coulomb::geometry::BodyId;
 
 namespace coulomb::python {
 namespace {
-
-struct PyWorld {
-  explicit PyWorld(engine::World w) : world(std::move(w)) {}
-  engine::World world;
-};
 
 std::int64_t handleOf(BodyId id) {
   return static_cast<std::int64_t>(static_cast<std::uint64_t>(id.generation) << 32 | id.index);
@@ -47,6 +43,26 @@ BodyId bodyOf(const PyWorld& w, std::int64_t handle) {
   if (handle < 0 || !w.world.contains(id))
     throw CoulombError("body handle " + std::to_string(handle) + " is stale or invalid");
   return id;
+}
+
+template <class Id>
+std::int64_t packed(Id id) {
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(id.generation) << 32 | id.index);
+}
+
+geometry::JointId jointOf(const PyWorld& w, std::int64_t handle) {
+  const auto bits = static_cast<std::uint64_t>(handle);
+  const geometry::JointId id{static_cast<std::uint32_t>(bits & 0xffffffffu),
+                             static_cast<std::uint32_t>(bits >> 32)};
+  if (handle < 0 || !w.world.contains(id))
+    throw CoulombError("joint handle " + std::to_string(handle) + " is stale or invalid");
+  return id;
+}
+
+// A joint in the JSON scene format whose ends name live bodies (docs/scene-format.md "Joints").
+std::int64_t addJoint(PyWorld& w, const py::dict& desc) {
+  const std::string text = py::module_::import("json").attr("dumps")(desc).cast<std::string>();
+  return packed(w.world.createJoint(engine::io::parseLiveJoint(text, w.world, "add_joint")));
 }
 
 std::vector<std::size_t> liveSlots(const engine::World& world) {
@@ -413,6 +429,26 @@ void bindWorldClass(py::module_& m) {
             w.world.applyTorque(bodyOf(w, h), vector3(torque, "torque"));
           },
           py::arg("body"), py::arg("torque"))
+      .def("add_joint", &addJoint, py::arg("desc"),
+           "adds a joint given as in the JSON scene format (docs/scene-format.md \"Joints\"), its "
+           "ends named by body name; returns its handle")
+      .def(
+          "remove_joint", [](PyWorld& w, std::int64_t h) { w.world.removeJoint(jointOf(w, h)); },
+          py::arg("joint"))
+      .def_property_readonly("joint_count", [](const PyWorld& w) { return w.world.jointCount(); })
+      .def(
+          "joint_reaction",
+          [](const PyWorld& w, std::int64_t h) {
+            const engine::JointReaction& r = w.world.jointReaction(jointOf(w, h));
+            return py::make_tuple(toNumpy(Eigen::VectorXd(r.force)),
+                                  toNumpy(Eigen::VectorXd(r.torque)));
+          },
+          py::arg("joint"),
+          "(force [N], torque [N m]) the joint applied to its body B, averaged over the last step")
+      .def(
+          "joint_broken",
+          [](const PyWorld& w, std::int64_t h) { return w.world.jointBroken(jointOf(w, h)); },
+          py::arg("joint"))
       .def("contacts", &contactArray,
            "the contact points of the last step: a structured array (body_a, body_b, point, "
            "normal (from a to b), depth, friction, normal_impulse, tangent_impulse)")

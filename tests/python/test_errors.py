@@ -96,6 +96,14 @@ def test_fuzz_regressions_replayed():
             coulomb.capture_problems(str(path), steps=3)
         except coulomb.Error as error:
             assert path.name in str(error)
+    for path in sorted((regressions / "urdf").iterdir()):
+        world = coulomb.World()
+        try:
+            world.load_urdf(str(path))
+        except coulomb.Error:
+            continue
+        world.step(3)
+        assert np.all(np.isfinite(world.positions()))
 
 
 def test_random_problems_never_crash():

@@ -34,3 +34,21 @@ def test_sweep_script_prints_its_table():
                          timeout=240).stdout
     assert "| mu | a exact [m/s^2] | auto error |" in out
     assert out.count("\n| 0.") == 13
+
+
+def run_sample(name, *args):
+    return subprocess.run([sys.executable, str(SAMPLES / name), *args], check=True,
+                          capture_output=True, text=True, timeout=240).stdout
+
+
+def test_robot_arm_reaches_its_targets():
+    out = run_sample("robot_arm.py")
+    errors = [float(line.split("largest joint error ")[1].split()[0])
+              for line in out.splitlines() if "largest joint error" in line]
+    assert len(errors) == 2 and max(errors) < 1e-6, out
+
+
+def test_compare_solvers_prints_every_solver(data_dir):
+    out = run_sample("compare_solvers.py", str(data_dir / "fc3d" / "Rover1039.fc3d"))
+    rows = [line for line in out.splitlines() if line.startswith("| Rover1039 |")]
+    assert len(rows) == 9 and "| ac_newton | converged |" in out

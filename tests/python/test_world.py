@@ -135,3 +135,41 @@ def test_robot_motor_targets_and_errors():
     with pytest.raises(coulomb.Error):
         world.load_urdf("no_such_robot.urdf")
     assert "arm" in robot.link_names and robot.link_positions.shape == (len(robot.link_names), 3)
+
+
+def test_maximal_joint_carries_the_hanging_weight():
+    """A 2 kg bob hanging at rest 1 m below a ball joint to the world: the joint pulls it up with
+    m g = 19.62 N and keeps it in place; removed, the bob falls."""
+    world = coulomb.World()
+    bob = world.add_body({"name": "bob", "position": [0.0, 0.0, -1.0], "mass": 2.0,
+                          "inertia": [0.01] * 3, "shapes": [{"type": "sphere", "radius": 0.05}]})
+    joint = world.add_joint({"name": "pivot", "type": "ball", "body_b": "bob",
+                             "anchor": [0.0, 0.0, 0.0]})
+    assert world.joint_count == 1
+    world.step(50)
+    force, torque = world.joint_reaction(joint)
+    np.testing.assert_allclose(force, [0.0, 0.0, 2.0 * 9.81], atol=1e-6)
+    np.testing.assert_allclose(world.positions()[0], [0.0, 0.0, -1.0], atol=1e-9)
+    assert not world.joint_broken(joint)
+    world.remove_joint(joint)
+    world.step(10)
+    assert world.linear_velocities()[world.bodies.index(bob), 2] < -0.9
+    with pytest.raises(coulomb.Error, match="stale"):
+        world.joint_reaction(joint)
+    with pytest.raises(coulomb.Error, match="add_joint: joint.body_b: .*'bobb'"):
+        world.add_joint({"type": "ball", "body_b": "bobb", "anchor": [0, 0, 0]})
+
+
+def test_run_batch_steps_worlds_in_place():
+    worlds = [coulomb.World("box_incline_B_slide"), coulomb.World("chain_10")]
+    alone = [coulomb.World("box_incline_B_slide"), coulomb.World("chain_10")]
+    for w in alone:
+        w.step(80)
+    results = coulomb.run_batch(worlds + ["newton_cradle"], threads=2, steps=80)
+    assert [w.state_hash for w in worlds] == [w.state_hash for w in alone]
+    assert [r.state_hash for r in results[:2]] == [w.state_hash for w in alone]
+    assert results[2].state_hash == coulomb.run("newton_cradle", steps=80).state_hash
+    with pytest.raises(ValueError, match="the same World twice"):
+        coulomb.run_batch([worlds[0], worlds[0]], steps=1)
+    with pytest.raises(ValueError, match="steps: required"):
+        coulomb.run_batch(worlds)
