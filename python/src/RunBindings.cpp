@@ -134,6 +134,9 @@ std::vector<RunResult> runBatch(const py::iterable& items, int threads,
       batch.push_back({sceneFrom(item, overrides), nullptr});
     }
   }
+  std::vector<std::unique_ptr<SteppingGuard>> guards;  // the worlds are busy until the end
+  for (const BatchItem& item : batch)
+    if (item.world) guards.push_back(std::make_unique<SteppingGuard>(*item.world));
   std::vector<RunResult> results(batch.size());
   std::vector<std::exception_ptr> errors(batch.size());
   {

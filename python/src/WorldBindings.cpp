@@ -40,7 +40,7 @@ BodyId bodyOf(const PyWorld& w, std::int64_t handle) {
   const auto bits = static_cast<std::uint64_t>(handle);
   const BodyId id{static_cast<std::uint32_t>(bits & 0xffffffffu),
                   static_cast<std::uint32_t>(bits >> 32)};
-  if (handle < 0 || !w.world.contains(id))
+  if (handle < 0 || !use(w).contains(id))
     throw CoulombError("body handle " + std::to_string(handle) + " is stale or invalid");
   return id;
 }
@@ -54,7 +54,7 @@ geometry::JointId jointOf(const PyWorld& w, std::int64_t handle) {
   const auto bits = static_cast<std::uint64_t>(handle);
   const geometry::JointId id{static_cast<std::uint32_t>(bits & 0xffffffffu),
                              static_cast<std::uint32_t>(bits >> 32)};
-  if (handle < 0 || !w.world.contains(id))
+  if (handle < 0 || !use(w).contains(id))
     throw CoulombError("joint handle " + std::to_string(handle) + " is stale or invalid");
   return id;
 }
@@ -62,7 +62,7 @@ geometry::JointId jointOf(const PyWorld& w, std::int64_t handle) {
 // A joint in the JSON scene format whose ends name live bodies (docs/scene-format.md "Joints").
 std::int64_t addJoint(PyWorld& w, const py::dict& desc) {
   const std::string text = py::module_::import("json").attr("dumps")(desc).cast<std::string>();
-  return packed(w.world.createJoint(engine::io::parseLiveJoint(text, w.world, "add_joint")));
+  return packed(use(w).createJoint(engine::io::parseLiveJoint(text, use(w), "add_joint")));
 }
 
 std::vector<std::size_t> liveSlots(const engine::World& world) {
@@ -120,7 +120,7 @@ std::int64_t addBody(PyWorld& w, const py::dict& desc, const py::object& materia
   if (!materials.is_none()) scene["materials"] = materials;
   const std::string text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
   const engine::io::Scene parsed = engine::io::parseScene(text, "add_body");
-  return handleOf(w.world.createBody(parsed.bodies.at(0)));
+  return handleOf(use(w).createBody(parsed.bodies.at(0)));
 }
 
 py::dict reportDict(const engine::StepReport& r) {
@@ -159,7 +159,7 @@ py::dict reportDict(const engine::StepReport& r) {
 
 // The points of the last step's manifolds as one structured array.
 py::object contactArray(const PyWorld& w) {
-  const auto& manifolds = w.world.contacts();
+  const auto& manifolds = use(w).contacts();
   std::size_t count = 0;
   for (const geometry::ContactManifold& m : manifolds) count += m.activePoints().size();
   py::module_ np = py::module_::import("numpy");
@@ -206,7 +206,7 @@ struct Robot {
   ArticulationId id;
 
   [[nodiscard]] const joints::tree::Articulation& model() const {
-    return world->world.articulations().model(id);
+    return use(*world).articulations().model(id);
   }
   // The link whose joint is called `joint`; CoulombError listing the names otherwise.
   [[nodiscard]] int linkOfJoint(const std::string& joint) const {
@@ -227,10 +227,10 @@ struct Robot {
   }
   void setMotorTarget(const std::string& joint, double target) const {
     const int link = linkOfJoint(joint);
-    const auto& motors = world->world.articulations().motors(id);
+    const auto& motors = use(*world).articulations().motors(id);
     for (std::size_t k = 0; k < motors.size(); ++k)
       if (motors[k].link == link) {
-        world->world.setJointMotorTarget(id, static_cast<int>(k), target);
+        use(*world).setJointMotorTarget(id, static_cast<int>(k), target);
         return;
       }
     throw CoulombError("joint '" + joint + "' has no motor");
@@ -239,7 +239,7 @@ struct Robot {
 
 std::vector<Robot> robotsOf(const std::shared_ptr<PyWorld>& w) {
   std::vector<Robot> robots;
-  const engine::ArticulationStage& stage = w->world.articulations();
+  const engine::ArticulationStage& stage = use(*w).articulations();
   for (std::uint32_t i = 0; robots.size() < stage.count() && i < 1u << 20; ++i)
     if (ArticulationId id{i, 0}; stage.contains(id)) robots.push_back({w, id});
   return robots;
@@ -255,11 +255,11 @@ Robot loadUrdf(const std::shared_ptr<PyWorld>& w, const std::string& path, bool 
   placement.options.base = floating ? engine::io::UrdfBase::Floating : engine::io::UrdfBase::Fixed;
   if (!position.is_none()) placement.options.basePose.position = vector3(position, "position");
   for (const std::string& p : packagePaths) placement.options.packagePath.emplace_back(p);
-  placement.options.gravity = w->world.settings().gravity;
+  placement.options.gravity = use(*w).settings().gravity;
   placement.holdAllJoints = hold;
   placement.clearance = onFloor;
   const engine::ArticulationDesc desc = engine::io::placeUrdf(placement, path);
-  return {w, w->world.createArticulation(desc)};
+  return {w, use(*w).createArticulation(desc)};
 }
 
 void bindRobot(py::module_& m) {
@@ -275,16 +275,16 @@ void bindRobot(py::module_& m) {
       .def_property_readonly("nq", [](const Robot& r) { return r.model().nq(); })
       .def_property_readonly("nv", [](const Robot& r) { return r.model().nv(); })
       .def_property_readonly(
-          "q", [](const Robot& r) { return toNumpy(r.world->world.articulations().q(r.id)); },
+          "q", [](const Robot& r) { return toNumpy(use(*r.world).articulations().q(r.id)); },
           "joint positions (nq; a floating base first: position, quaternion w x y z)")
       .def_property_readonly(
-          "qd", [](const Robot& r) { return toNumpy(r.world->world.articulations().qd(r.id)); },
+          "qd", [](const Robot& r) { return toNumpy(use(*r.world).articulations().qd(r.id)); },
           "joint velocities (nv)")
       .def(
           "set_state",
           [](const Robot& r, const py::object& q, const py::object& qd) {
-            r.world->world.setArticulationState(r.id, toVector(q, "q", r.model().nq()),
-                                                toVector(qd, "qd", r.model().nv()));
+            use(*r.world).setArticulationState(r.id, toVector(q, "q", r.model().nq()),
+                                               toVector(qd, "qd", r.model().nv()));
           },
           py::arg("q"), py::arg("qd"))
       .def(
@@ -302,7 +302,7 @@ void bindRobot(py::module_& m) {
       .def(
           "apply_joint_forces",
           [](const Robot& r, const py::object& tau) {
-            r.world->world.applyJointForces(r.id, toVector(tau, "tau", r.model().nv()));
+            use(*r.world).applyJointForces(r.id, toVector(tau, "tau", r.model().nv()));
           },
           py::arg("tau"), "generalised forces (nv) for the next step only")
       .def("set_motor_target", &Robot::setMotorTarget, py::arg("joint"), py::arg("target"),
@@ -313,7 +313,7 @@ void bindRobot(py::module_& m) {
             const int n = r.model().linkCount();
             Eigen::MatrixXd p(n, 3);
             for (int i = 0; i < n; ++i)
-              p.row(i) = r.world->world.articulations().linkPose(r.id, i).position.transpose();
+              p.row(i) = use(*r.world).articulations().linkPose(r.id, i).position.transpose();
             return toNumpy(p);
           },
           "(links, 3) link frame origins [m]");
@@ -330,43 +330,44 @@ void bindWorldClass(py::module_& m) {
           "step",
           [](PyWorld& w, int n) {
             if (n < 0) throw py::value_error("n: expected >= 0");
+            const SteppingGuard guard(w);
             py::gil_scoped_release released;
             for (int i = 0; i < n; ++i) w.world.step();
           },
           py::arg("n") = 1, "advances n steps of the world's time step (GIL released)")
       .def(
-          "report", [](const PyWorld& w) { return reportDict(w.world.lastReport()); },
+          "report", [](const PyWorld& w) { return reportDict(use(w).lastReport()); },
           "the last step's report as a dict (islands with solver, status, iterations, residual)")
-      .def_property_readonly("time", [](const PyWorld& w) { return w.world.time(); })
-      .def_property_readonly("step_count", [](const PyWorld& w) { return w.world.stepCount(); })
+      .def_property_readonly("time", [](const PyWorld& w) { return use(w).time(); })
+      .def_property_readonly("step_count", [](const PyWorld& w) { return use(w).stepCount(); })
       .def_property_readonly("time_step",
-                             [](const PyWorld& w) { return w.world.settings().timeStep; })
-      .def_property_readonly("state_hash", [](const PyWorld& w) { return w.world.stateHash(); })
+                             [](const PyWorld& w) { return use(w).settings().timeStep; })
+      .def_property_readonly("state_hash", [](const PyWorld& w) { return use(w).stateHash(); })
       .def_property_readonly("state_hash_hex",
-                             [](const PyWorld& w) { return hashText(w.world.stateHash()); })
+                             [](const PyWorld& w) { return hashText(use(w).stateHash()); })
       .def_property_readonly("mechanical_energy",
-                             [](const PyWorld& w) { return w.world.mechanicalEnergy(); })
-      .def_property_readonly("body_count", [](const PyWorld& w) { return w.world.bodyCount(); })
+                             [](const PyWorld& w) { return use(w).mechanicalEnergy(); })
+      .def_property_readonly("body_count", [](const PyWorld& w) { return use(w).bodyCount(); })
       .def_property_readonly(
           "bodies",
           [](const PyWorld& w) {
             std::vector<std::int64_t> handles;
-            for (std::size_t slot : liveSlots(w.world))
-              handles.push_back(handleOf(w.world.idAt(slot)));
+            for (std::size_t slot : liveSlots(use(w)))
+              handles.push_back(handleOf(use(w).idAt(slot)));
             return handles;
           },
           "handles of the live bodies, in the order of the state arrays")
       .def_property_readonly("body_names",
                              [](const PyWorld& w) {
                                std::vector<std::string> names;
-                               for (std::size_t slot : liveSlots(w.world))
-                                 names.push_back(w.world.name(w.world.idAt(slot)));
+                               for (std::size_t slot : liveSlots(use(w)))
+                                 names.push_back(use(w).name(use(w).idAt(slot)));
                                return names;
                              })
       .def(
           "find_body",
           [](const PyWorld& w, const std::string& name) -> std::optional<std::int64_t> {
-            const BodyId id = w.world.findBody(name);
+            const BodyId id = use(w).findBody(name);
             if (!id.valid()) return std::nullopt;
             return handleOf(id);
           },
@@ -375,19 +376,19 @@ void bindWorldClass(py::module_& m) {
            "adds a body given as in the JSON scene format (docs/scene-format.md); returns its "
            "handle")
       .def(
-          "remove_body", [](PyWorld& w, std::int64_t h) { w.world.removeBody(bodyOf(w, h)); },
+          "remove_body", [](PyWorld& w, std::int64_t h) { use(w).removeBody(bodyOf(w, h)); },
           py::arg("body"))
       .def("positions",
            [](const PyWorld& w) {
-             const geometry::BodyState& s = w.world.state();
-             return perBody(w.world, 3,
+             const geometry::BodyState& s = use(w).state();
+             return perBody(use(w), 3,
                             [&](std::size_t i, double* row) { put3(row, s.poses[i].position); });
            })
       .def(
           "quaternions",
           [](const PyWorld& w) {
-            const geometry::BodyState& s = w.world.state();
-            return perBody(w.world, 4, [&](std::size_t i, double* row) {
+            const geometry::BodyState& s = use(w).state();
+            return perBody(use(w), 4, [&](std::size_t i, double* row) {
               const Eigen::Quaterniond& q = s.poses[i].rotation;
               row[0] = q.w(), row[1] = q.x(), row[2] = q.y(), row[3] = q.z();
             });
@@ -395,51 +396,51 @@ void bindWorldClass(py::module_& m) {
           "(N, 4) as (w, x, y, z)")
       .def("linear_velocities",
            [](const PyWorld& w) {
-             const geometry::BodyState& s = w.world.state();
-             return perBody(w.world, 3,
+             const geometry::BodyState& s = use(w).state();
+             return perBody(use(w), 3,
                             [&](std::size_t i, double* row) { put3(row, s.linearVelocities[i]); });
            })
       .def("angular_velocities",
            [](const PyWorld& w) {
-             const geometry::BodyState& s = w.world.state();
-             return perBody(w.world, 3,
+             const geometry::BodyState& s = use(w).state();
+             return perBody(use(w), 3,
                             [&](std::size_t i, double* row) { put3(row, s.angularVelocities[i]); });
            })
       .def(
           "set_velocity",
           [](PyWorld& w, std::int64_t h, const py::object& linear, const py::object& angular) {
-            w.world.setVelocity(bodyOf(w, h), vector3(linear, "linear"),
-                                vector3(angular, "angular"));
+            use(w).setVelocity(bodyOf(w, h), vector3(linear, "linear"),
+                               vector3(angular, "angular"));
           },
           py::arg("body"), py::arg("linear"), py::arg("angular"))
       .def(
           "apply_force",
           [](PyWorld& w, std::int64_t h, const py::object& force, const py::object& point) {
             if (point.is_none())
-              w.world.applyForce(bodyOf(w, h), vector3(force, "force"));
+              use(w).applyForce(bodyOf(w, h), vector3(force, "force"));
             else
-              w.world.applyForceAtPoint(bodyOf(w, h), vector3(force, "force"),
-                                        vector3(point, "point"));
+              use(w).applyForceAtPoint(bodyOf(w, h), vector3(force, "force"),
+                                       vector3(point, "point"));
           },
           py::arg("body"), py::arg("force"), py::arg("point") = py::none(),
           "a force [N] at the centre of mass or at a world point, for the next step")
       .def(
           "apply_torque",
           [](PyWorld& w, std::int64_t h, const py::object& torque) {
-            w.world.applyTorque(bodyOf(w, h), vector3(torque, "torque"));
+            use(w).applyTorque(bodyOf(w, h), vector3(torque, "torque"));
           },
           py::arg("body"), py::arg("torque"))
       .def("add_joint", &addJoint, py::arg("desc"),
            "adds a joint given as in the JSON scene format (docs/scene-format.md \"Joints\"), its "
            "ends named by body name; returns its handle")
       .def(
-          "remove_joint", [](PyWorld& w, std::int64_t h) { w.world.removeJoint(jointOf(w, h)); },
+          "remove_joint", [](PyWorld& w, std::int64_t h) { use(w).removeJoint(jointOf(w, h)); },
           py::arg("joint"))
-      .def_property_readonly("joint_count", [](const PyWorld& w) { return w.world.jointCount(); })
+      .def_property_readonly("joint_count", [](const PyWorld& w) { return use(w).jointCount(); })
       .def(
           "joint_reaction",
           [](const PyWorld& w, std::int64_t h) {
-            const engine::JointReaction& r = w.world.jointReaction(jointOf(w, h));
+            const engine::JointReaction& r = use(w).jointReaction(jointOf(w, h));
             return py::make_tuple(toNumpy(Eigen::VectorXd(r.force)),
                                   toNumpy(Eigen::VectorXd(r.torque)));
           },
@@ -447,7 +448,7 @@ void bindWorldClass(py::module_& m) {
           "(force [N], torque [N m]) the joint applied to its body B, averaged over the last step")
       .def(
           "joint_broken",
-          [](const PyWorld& w, std::int64_t h) { return w.world.jointBroken(jointOf(w, h)); },
+          [](const PyWorld& w, std::int64_t h) { return use(w).jointBroken(jointOf(w, h)); },
           py::arg("joint"))
       .def("contacts", &contactArray,
            "the contact points of the last step: a structured array (body_a, body_b, point, "
@@ -455,7 +456,7 @@ void bindWorldClass(py::module_& m) {
       .def(
           "save",
           [](const PyWorld& w) {
-            const std::vector<std::uint8_t> bytes = engine::io::saveSnapshot(w.world);
+            const std::vector<std::uint8_t> bytes = engine::io::saveSnapshot(use(w));
             return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
           },
           "the state as bytes (a snapshot, docs/reliability.md)")
@@ -464,7 +465,7 @@ void bindWorldClass(py::module_& m) {
           [](PyWorld& w, const py::bytes& data) {
             const std::string text = data;
             const auto* begin = reinterpret_cast<const std::uint8_t*>(text.data());
-            engine::io::restoreSnapshot(w.world, {begin, text.size()}, "<bytes>");
+            engine::io::restoreSnapshot(use(w), {begin, text.size()}, "<bytes>");
           },
           py::arg("snapshot"), "back to a state saved by save() from a world of the same scene")
       .def("robots", &robotsOf, "the URDF robots (articulations) of the world")

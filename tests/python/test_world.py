@@ -173,3 +173,22 @@ def test_run_batch_steps_worlds_in_place():
         coulomb.run_batch([worlds[0], worlds[0]], steps=1)
     with pytest.raises(ValueError, match="steps: required"):
         coulomb.run_batch(worlds)
+
+
+def test_a_world_being_stepped_by_another_thread_refuses_access():
+    """step() releases the GIL: a second thread touching the same world meanwhile gets
+    coulomb.Error instead of a data race."""
+    import threading
+    world = coulomb.World("box_pile_1000")
+    stepper = threading.Thread(target=world.step, args=(30,))
+    stepper.start()
+    refused = 0
+    while stepper.is_alive():
+        try:
+            world.positions()
+        except coulomb.Error as error:
+            assert "being stepped by another thread" in str(error)
+            refused += 1
+    stepper.join()
+    assert refused > 0
+    assert world.step_count == 30 and np.all(np.isfinite(world.positions()))
