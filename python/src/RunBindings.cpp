@@ -165,63 +165,67 @@ std::vector<RunResult> runBatch(const py::iterable& items, int threads,
   return results;
 }
 
+// The scalar fields of a RunResult by their Python names: one table for the properties, to_dict
+// and pickling.
+struct NumberField {
+  const char* name;
+  double RunResult::*member;
+  const char* doc;
+};
+struct CountField {
+  const char* name;
+  std::uint64_t RunResult::*member;
+  const char* doc;
+};
+constexpr NumberField kNumbers[] = {
+    {"time", &RunResult::time, "[s] simulated time"},
+    {"time_step", &RunResult::timeStep, "[s]"},
+    {"energy_start", &RunResult::energyStart, "[J] mechanical energy before the first step"},
+    {"energy_end", &RunResult::energyEnd, "[J] after the last step"},
+    {"max_residual", &RunResult::maxResidual, "common e_rel, max over islands and steps"},
+    {"max_joint_gap", &RunResult::maxJointGap, "[m] largest joint gap after any step"},
+    {"seconds", &RunResult::seconds, "[s] wall clock of the steps"}};
+constexpr CountField kCounts[] = {
+    {"steps", &RunResult::steps, "steps taken"},
+    {"state_hash", &RunResult::stateHash,
+     "hash of every pose and velocity (bit patterns), as `coulomb run` prints it"},
+    {"island_solves", &RunResult::islandSolves, "island solves over the run"},
+    {"iterations", &RunResult::iterations, "solver iterations, summed"},
+    {"unconverged", &RunResult::unconverged, "island solves left above the tolerance"},
+    {"fallbacks", &RunResult::fallbacks, "fallback attempts over the run"}};
+
 py::dict toDict(const RunResult& r) {
   py::dict d;
   d["scene"] = r.scene;
-  d["steps"] = r.steps;
-  d["time"] = r.time;
-  d["time_step"] = r.timeStep;
-  d["state_hash"] = r.stateHash;
   d["bodies"] = r.bodies;
+  for (const NumberField& f : kNumbers) d[f.name] = r.*f.member;
+  for (const CountField& f : kCounts) d[f.name] = r.*f.member;
   d["positions"] = toNumpy(r.positions);
   d["quaternions"] = toNumpy(r.quaternions);
   d["linear_velocities"] = toNumpy(r.linearVelocities);
   d["angular_velocities"] = toNumpy(r.angularVelocities);
-  d["energy_start"] = r.energyStart;
-  d["energy_end"] = r.energyEnd;
-  d["island_solves"] = r.islandSolves;
-  d["iterations"] = r.iterations;
-  d["unconverged"] = r.unconverged;
-  d["fallbacks"] = r.fallbacks;
-  d["max_residual"] = r.maxResidual;
-  d["max_joint_gap"] = r.maxJointGap;
-  d["seconds"] = r.seconds;
   return d;
 }
 
 RunResult fromDict(const py::dict& d) {
   RunResult r;
   r.scene = d["scene"].cast<std::string>();
-  r.steps = d["steps"].cast<std::uint64_t>();
-  r.time = d["time"].cast<double>();
-  r.timeStep = d["time_step"].cast<double>();
-  r.stateHash = d["state_hash"].cast<std::uint64_t>();
   r.bodies = d["bodies"].cast<std::vector<std::string>>();
+  for (const NumberField& f : kNumbers) r.*f.member = d[f.name].cast<double>();
+  for (const CountField& f : kCounts) r.*f.member = d[f.name].cast<std::uint64_t>();
   const auto n = static_cast<Eigen::Index>(r.bodies.size());
   r.positions = toMatrix(d["positions"], "positions", n, 3);
   r.quaternions = toMatrix(d["quaternions"], "quaternions", n, 4);
   r.linearVelocities = toMatrix(d["linear_velocities"], "linear_velocities", n, 3);
   r.angularVelocities = toMatrix(d["angular_velocities"], "angular_velocities", n, 3);
-  r.energyStart = d["energy_start"].cast<double>();
-  r.energyEnd = d["energy_end"].cast<double>();
-  r.islandSolves = d["island_solves"].cast<std::uint64_t>();
-  r.iterations = d["iterations"].cast<std::uint64_t>();
-  r.unconverged = d["unconverged"].cast<std::uint64_t>();
-  r.fallbacks = d["fallbacks"].cast<std::uint64_t>();
-  r.maxResidual = d["max_residual"].cast<double>();
-  r.maxJointGap = d["max_joint_gap"].cast<double>();
-  r.seconds = d["seconds"].cast<double>();
   return r;
 }
 
 void bindRunResult(py::module_& m) {
-  py::class_<RunResult>(m, "RunResult", "The end of a scene run (docs/python.md)")
-      .def_readonly("scene", &RunResult::scene)
-      .def_readonly("steps", &RunResult::steps)
-      .def_readonly("time", &RunResult::time, "[s] simulated time")
-      .def_readonly("time_step", &RunResult::timeStep)
-      .def_readonly("state_hash", &RunResult::stateHash,
-                    "hash of every pose and velocity (bit patterns), as `coulomb run` prints it")
+  py::class_<RunResult> result(m, "RunResult", "The end of a scene run (docs/python.md)");
+  for (const NumberField& f : kNumbers) result.def_readonly(f.name, f.member, f.doc);
+  for (const CountField& f : kCounts) result.def_readonly(f.name, f.member, f.doc);
+  result.def_readonly("scene", &RunResult::scene)
       .def_property_readonly("state_hash_hex",
                              [](const RunResult& r) { return hashText(r.stateHash); })
       .def_readonly("bodies", &RunResult::bodies, "names of the live bodies, in slot order")
@@ -237,15 +241,6 @@ void bindRunResult(py::module_& m) {
       .def_property_readonly(
           "angular_velocities", [](const RunResult& r) { return toNumpy(r.angularVelocities); },
           "(N, 3) [rad/s], world frame")
-      .def_readonly("energy_start", &RunResult::energyStart, "[J] mechanical energy")
-      .def_readonly("energy_end", &RunResult::energyEnd, "[J]")
-      .def_readonly("island_solves", &RunResult::islandSolves)
-      .def_readonly("iterations", &RunResult::iterations, "solver iterations, summed")
-      .def_readonly("unconverged", &RunResult::unconverged, "island solves above the tolerance")
-      .def_readonly("fallbacks", &RunResult::fallbacks)
-      .def_readonly("max_residual", &RunResult::maxResidual)
-      .def_readonly("max_joint_gap", &RunResult::maxJointGap, "[m]")
-      .def_readonly("seconds", &RunResult::seconds, "wall clock of the steps")
       .def("to_dict", &toDict)
       .def("__repr__",
            [](const RunResult& r) {

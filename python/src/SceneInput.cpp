@@ -7,6 +7,10 @@ namespace py = pybind11;
 
 namespace coulomb::python {
 
+std::string jsonText(const py::handle& object) {
+  return py::module_::import("json").attr("dumps")(object).cast<std::string>();
+}
+
 std::string hashText(std::uint64_t hash) {
   char text[32];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
@@ -28,7 +32,7 @@ scenes::SceneOverrides overridesFrom(std::optional<std::uint64_t> steps, std::op
 
 engine::io::Scene sceneFrom(const py::handle& scene, const scenes::SceneOverrides& overrides) {
   if (py::isinstance<py::dict>(scene)) {
-    const std::string text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+    const std::string text = jsonText(scene);
     const py::object name = scene.cast<py::dict>().attr("get")("name", "unnamed");
     engine::io::Scene parsed =
         engine::io::parseScene(text, "<scene dict '" + py::str(name).cast<std::string>() + "'>");

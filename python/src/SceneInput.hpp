@@ -13,6 +13,9 @@
 
 namespace coulomb::python {
 
+/// A Python object (dicts, lists, numbers, strings) as JSON text, for the engine's JSON readers.
+std::string jsonText(const pybind11::handle& object);
+
 /// As `coulomb run` prints a state hash: 16 hex digits.
 std::string hashText(std::uint64_t hash);
 

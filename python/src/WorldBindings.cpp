@@ -61,7 +61,7 @@ geometry::JointId jointOf(const PyWorld& w, std::int64_t handle) {
 
 // A joint in the JSON scene format whose ends name live bodies (docs/scene-format.md "Joints").
 std::int64_t addJoint(PyWorld& w, const py::dict& desc) {
-  const std::string text = py::module_::import("json").attr("dumps")(desc).cast<std::string>();
+  const std::string text = jsonText(desc);
   return packed(use(w).createJoint(engine::io::parseLiveJoint(text, use(w), "add_joint")));
 }
 
@@ -118,7 +118,7 @@ std::int64_t addBody(PyWorld& w, const py::dict& desc, const py::object& materia
   bodies.append(desc);
   scene["bodies"] = bodies;
   if (!materials.is_none()) scene["materials"] = materials;
-  const std::string text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+  const std::string text = jsonText(scene);
   const engine::io::Scene parsed = engine::io::parseScene(text, "add_body");
   return handleOf(use(w).createBody(parsed.bodies.at(0)));
 }
