@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "Bindings.hpp"
+#include "CapturedProblem.hpp"
+#include "SceneInput.hpp"
 #include "scenes/SceneRegistry.hpp"
 
 namespace py = pybind11;
@@ -21,12 +23,6 @@ using coulomb::solvers::ContactProblem;
 
 namespace coulomb::python {
 namespace {
-
-struct CapturedProblem {
-  std::uint64_t step = 0;  // index of the step (0 = the first)
-  std::int32_t island = 0;
-  ContactProblem problem;
-};
 
 // A copy that owns a block-sparse W (the world's operator refers to buffers it refills), named
 // as `coulomb run --capture` names its files: <scene>_step<N>_island<K>.
@@ -38,23 +34,35 @@ ContactProblem detached(const ContactProblem& p, const std::string& scene, std::
   return copy;
 }
 
-std::vector<CapturedProblem> capture(const std::string& scene, std::optional<std::uint64_t> steps,
+std::vector<CapturedProblem> capture(const py::handle& scene, std::optional<std::uint64_t> steps,
                                      std::optional<std::uint64_t> atStep) {
-  const engine::io::Scene loaded = scenes::resolveScene(scene);
+  const engine::io::Scene loaded = sceneFrom(scene, {});
   const std::uint64_t count = steps ? *steps : atStep ? *atStep + 1 : loaded.steps;
-  std::vector<CapturedProblem> captured;
   py::gil_scoped_release released;
   engine::World world = engine::io::buildWorld(loaded);
-  world.setProblemObserver([&](std::int32_t island, const ContactProblem& problem) {
-    const std::uint64_t step = world.stepCount();
-    if (!atStep || *atStep == step)
-      captured.push_back({step, island, detached(problem, loaded.name, step, island)});
-  });
-  for (std::uint64_t i = 0; i < count; ++i) world.step();
-  return captured;
+  return stepCapturing(world, count, atStep, loaded.name);
 }
 
 }  // namespace
+
+std::vector<CapturedProblem> stepCapturing(engine::World& world, std::uint64_t steps,
+                                           std::optional<std::uint64_t> onlyStep,
+                                           const std::string& name) {
+  std::vector<CapturedProblem> captured;
+  world.setProblemObserver([&](std::int32_t island, const ContactProblem& problem) {
+    const std::uint64_t step = world.stepCount();
+    if (!onlyStep || *onlyStep == step)
+      captured.push_back({step, island, detached(problem, name, step, island)});
+  });
+  try {
+    for (std::uint64_t i = 0; i < steps; ++i) world.step();
+  } catch (...) {
+    world.setProblemObserver({});
+    throw;
+  }
+  world.setProblemObserver({});
+  return captured;
+}
 
 void bindCapture(py::module_& m) {
   py::class_<CapturedProblem>(m, "CapturedProblem", "An island's problem at one step of a scene")
@@ -76,7 +84,8 @@ void bindCapture(py::module_& m) {
       "The names of the built-in scenes (`coulomb scenes`)");
   m.def("capture_problems", &capture, py::arg("scene"), py::kw_only(),
         py::arg("steps") = py::none(), py::arg("at_step") = py::none(),
-        "Runs a scene (a built-in name or a JSON file) for `steps` steps (default: at_step + 1, "
+        "Runs a scene (a built-in name, a JSON or URDF file, or a dict) for `steps` steps "
+        "(default: at_step + 1, "
         "else the scene's own count) and returns the problem of every island of every step, or "
         "of step `at_step` only, as the solver received it (warm start included).");
 }

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "Bindings.hpp"
+#include "CapturedProblem.hpp"
 #include "NumpyConversion.hpp"
 #include "PyWorld.hpp"
 #include "SceneInput.hpp"
@@ -335,6 +336,16 @@ void bindWorldClass(py::module_& m) {
             for (int i = 0; i < n; ++i) w.world.step();
           },
           py::arg("n") = 1, "advances n steps of the world's time step (GIL released)")
+      .def(
+          "step_capturing",
+          [](PyWorld& w, std::uint64_t n) {
+            const SteppingGuard guard(w);
+            py::gil_scoped_release released;
+            return stepCapturing(w.world, n, std::nullopt, "world");
+          },
+          py::arg("n") = 1,
+          "steps like step(n) and returns every island's problem of those steps as its solver "
+          "received it (coulomb.CapturedProblem, named world_step<N>_island<K>)")
       .def(
           "report", [](const PyWorld& w) { return reportDict(use(w).lastReport()); },
           "the last step's report as a dict (islands with solver, status, iterations, residual)")

@@ -192,3 +192,19 @@ def test_a_world_being_stepped_by_another_thread_refuses_access():
     stepper.join()
     assert refused > 0
     assert world.step_count == 30 and np.all(np.isfinite(world.positions()))
+
+
+def test_problems_captured_from_a_live_world():
+    """step_capturing: each island's problem as the solver received it, the same problem that
+    capture_problems takes from the scene at that step."""
+    world = coulomb.World("box_on_plane")
+    world.step(10)
+    captured = world.step_capturing(1)
+    assert [(c.step, c.island) for c in captured] == [(10, 0)]
+    assert captured[0].problem.name == "world_step10_island0"
+    reference = coulomb.capture_problems("box_on_plane", at_step=10)[0].problem
+    np.testing.assert_array_equal(captured[0].problem.W, reference.W)
+    np.testing.assert_array_equal(captured[0].problem.q, reference.q)
+    assert world.step_count == 11
+    world.step(1)  # the observer is gone: stepping captures nothing more
+    assert coulomb.solve(captured[0].problem, "ac_newton").converged
