@@ -118,6 +118,8 @@ std::vector<RunResult> runBatch(const py::iterable& items, int threads,
                                 std::optional<std::string> solver, std::optional<double> tol,
                                 std::optional<int> maxIterations, std::optional<double> mu) {
   if (threads < 0) throw py::value_error("threads: expected >= 0 (0 = every core)");
+  if (py::isinstance<py::str>(items) || py::isinstance<py::dict>(items))
+    throw py::value_error("scenes: expected a list of scenes or worlds, got one scene");
   const scenes::SceneOverrides overrides =
       overridesFrom(steps, dt, std::move(solver), tol, maxIterations, mu);
   std::vector<BatchItem> batch;

@@ -8,7 +8,11 @@ namespace py = pybind11;
 namespace coulomb::python {
 
 std::string jsonText(const py::handle& object) {
-  return py::module_::import("json").attr("dumps")(object).cast<std::string>();
+  // NaN and infinities are not JSON: refused here with Python's own ValueError ("Out of range
+  // float values are not JSON compliant") rather than as a parse error of the text.
+  return py::module_::import("json")
+      .attr("dumps")(object, py::arg("allow_nan") = false)
+      .cast<std::string>();
 }
 
 std::string hashText(std::uint64_t hash) {

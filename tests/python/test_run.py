@@ -81,6 +81,8 @@ def test_run_batch_errors():
     with pytest.raises(coulomb.Error, match="no_such_scene"):
         coulomb.run_batch(["box_on_plane", "no_such_scene"], steps=1)
     assert coulomb.run_batch([], threads=2) == []
+    with pytest.raises(ValueError, match="a list of scenes or worlds, got one scene"):
+        coulomb.run_batch("box_on_plane", steps=1)
 
 
 def test_run_errors():

@@ -45,6 +45,9 @@ def test_added_ball_lands_and_handles_go_stale():
     assert ball not in world.bodies and world.body_count == 2
     with pytest.raises(coulomb.Error, match="stale"):
         world.set_velocity(ball, [0, 0, 0], [0, 0, 0])
+    with pytest.raises(ValueError, match="not JSON compliant"):  # NaN has no JSON form
+        world.add_body({"name": "nan", "position": [float("nan"), 0, 0], "mass": 1.0,
+                        "inertia": [1, 1, 1], "shapes": [{"type": "sphere", "radius": 0.1}]})
     with pytest.raises(coulomb.Error, match=r"bodies\[0\]"):
         world.add_body({"name": "bad", "mass": -1.0, "inertia": [1, 1, 1],
                         "shapes": [{"type": "sphere", "radius": 0.1}]})
