@@ -33,37 +33,36 @@ using coulomb::geometry::BodyId;
 namespace coulomb::python {
 namespace {
 
-std::int64_t handleOf(BodyId id) {
+// Handles are (generation << 32 | slot): an id of the engine packed into one Python int.
+template <class Id>
+std::int64_t handleOf(Id id) {
   return static_cast<std::int64_t>(static_cast<std::uint64_t>(id.generation) << 32 | id.index);
+}
+
+// The live id of a handle, or CoulombError naming it (`what`: "body", "joint").
+template <class Id>
+Id idOf(const PyWorld& w, std::int64_t handle, const char* what) {
+  const auto bits = static_cast<std::uint64_t>(handle);
+  const Id id{static_cast<std::uint32_t>(bits & 0xffffffffu),
+              static_cast<std::uint32_t>(bits >> 32)};
+  if (handle < 0 || !use(w).contains(id))
+    throw CoulombError(std::string(what) + " handle " + std::to_string(handle) +
+                       " is stale or invalid");
+  return id;
 }
 
 BodyId bodyOf(const PyWorld& w, std::int64_t handle) {
-  const auto bits = static_cast<std::uint64_t>(handle);
-  const BodyId id{static_cast<std::uint32_t>(bits & 0xffffffffu),
-                  static_cast<std::uint32_t>(bits >> 32)};
-  if (handle < 0 || !use(w).contains(id))
-    throw CoulombError("body handle " + std::to_string(handle) + " is stale or invalid");
-  return id;
-}
-
-template <class Id>
-std::int64_t packed(Id id) {
-  return static_cast<std::int64_t>(static_cast<std::uint64_t>(id.generation) << 32 | id.index);
+  return idOf<BodyId>(w, handle, "body");
 }
 
 geometry::JointId jointOf(const PyWorld& w, std::int64_t handle) {
-  const auto bits = static_cast<std::uint64_t>(handle);
-  const geometry::JointId id{static_cast<std::uint32_t>(bits & 0xffffffffu),
-                             static_cast<std::uint32_t>(bits >> 32)};
-  if (handle < 0 || !use(w).contains(id))
-    throw CoulombError("joint handle " + std::to_string(handle) + " is stale or invalid");
-  return id;
+  return idOf<geometry::JointId>(w, handle, "joint");
 }
 
 // A joint in the JSON scene format whose ends name live bodies (docs/scene-format.md "Joints").
 std::int64_t addJoint(PyWorld& w, const py::dict& desc) {
   const std::string text = jsonText(desc);
-  return packed(use(w).createJoint(engine::io::parseLiveJoint(text, use(w), "add_joint")));
+  return handleOf(use(w).createJoint(engine::io::parseLiveJoint(text, use(w), "add_joint")));
 }
 
 std::vector<std::size_t> liveSlots(const engine::World& world) {
