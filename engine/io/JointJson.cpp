@@ -201,10 +201,6 @@ SceneJoint parseJoint(const JsonNode& node, const std::vector<BodyDesc>& bodies,
   return joint;
 }
 
-}  // namespace coulomb::engine::io
-
-namespace coulomb::engine::io {
-
 joints::JointDef parseLiveJoint(std::string_view text, const World& world,
                                 const std::string& source) {
   nlohmann::json document;
