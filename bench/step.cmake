@@ -4,3 +4,8 @@
 if(TARGET coulomb_samples AND TARGET coulomb_heap_counter)
   coulomb_add_executable(StepCost SOURCES StepCost.cpp LINKS coulomb_samples coulomb_heap_counter)
 endif()
+# Scene query cost (docs/embedding.md, "Scene queries"): ray casts, shape casts, overlaps and AABB
+# queries per second against a scene, and the cost of the sync after a step.
+if(TARGET coulomb_samples)
+  coulomb_add_executable(QueryCost SOURCES QueryCost.cpp LINKS coulomb_samples)
+endif()

@@ -122,19 +122,55 @@ bool finite(const fcl::Contactd& c) {
   return c.normal.allFinite() && c.pos.allFinite() && std::isfinite(c.penetration_depth);
 }
 
+// One FCL geometry and object: a collider of the scene or a query shape (FclQueryShape).
+struct FclEntry {
+  ColliderId id;
+  std::shared_ptr<const Shape> shape;
+  std::shared_ptr<fcl::CollisionGeometryd> geometry;
+  std::unique_ptr<TreeObject> object;
+  fcl::AABBd fat;  // what the tree holds: the tight AABB grown by margin + slack
+  bool hasFat = false;
+  bool isPlane = false;
+  bool isMesh = false;
+
+  void build(const std::shared_ptr<const Shape>& newShape, const std::string& who) {
+    if (!newShape) throw std::invalid_argument(who + ": has no shape");
+    if (auto problem = validateShape(*newShape)) throw std::invalid_argument(who + ": " + *problem);
+    shape = newShape;
+    isPlane = std::holds_alternative<Plane>(*shape);
+    isMesh = std::holds_alternative<TriangleMesh>(*shape);
+    try {
+      geometry = makeGeometry(*shape, who);
+    } catch (const std::invalid_argument&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(who + ": FCL rejected the " + shapeKindName(*shape) + ": " +
+                                  e.what());
+    }
+    object = std::make_unique<TreeObject>(geometry);
+  }
+
+  void setTransform(const Pose& worldPose) {
+    fcl::Transform3d transform = fcl::Transform3d::Identity();
+    transform.linear() = worldPose.rotation.normalized().toRotationMatrix();  // fcl#567
+    transform.translation() = worldPose.position;
+    object->setTransform(transform);
+  }
+};
+
+FclCollideResult collidePair(const FclEntry& ea, const FclEntry& eb, ColliderId a, ColliderId b,
+                             int maxContacts, const FclFaultInjector& inject);
+FclDistanceResult distancePair(const FclEntry& ea, const FclEntry& eb, ColliderId a, ColliderId b,
+                               const FclFaultInjector& inject);
+
 }  // namespace
 
+struct FclQueryShape::Impl {
+  FclEntry entry;
+};
+
 struct FclScene::Impl {
-  struct Entry {
-    ColliderId id;
-    std::shared_ptr<const Shape> shape;
-    std::shared_ptr<fcl::CollisionGeometryd> geometry;
-    std::unique_ptr<TreeObject> object;
-    fcl::AABBd fat;  // what the tree holds: the tight AABB grown by margin + slack
-    bool hasFat = false;
-    bool isPlane = false;
-    bool isMesh = false;
-  };
+  using Entry = FclEntry;
 
   double margin = 0.0;
   std::map<ColliderId, std::unique_ptr<Entry>> entries;  // unique_ptr: stable user-data address
@@ -177,24 +213,9 @@ FclScene& FclScene::operator=(FclScene&&) noexcept = default;
 void FclScene::upsert(ColliderId id, const std::shared_ptr<const Shape>& shape) {
   auto it = impl_->entries.find(id);
   if (shape && it != impl_->entries.end() && it->second->shape == shape) return;  // no name built
-  const std::string who = name(id);
-  if (!shape) throw std::invalid_argument(who + ": has no shape");
-  if (auto problem = validateShape(*shape)) throw std::invalid_argument(who + ": " + *problem);
-
   auto entry = std::make_unique<Impl::Entry>();
   entry->id = id;
-  entry->shape = shape;
-  entry->isPlane = std::holds_alternative<Plane>(*shape);
-  entry->isMesh = std::holds_alternative<TriangleMesh>(*shape);
-  try {
-    entry->geometry = makeGeometry(*shape, who);
-  } catch (const std::invalid_argument&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw std::invalid_argument(who + ": FCL rejected the " + shapeKindName(*shape) + ": " +
-                                e.what());
-  }
-  entry->object = std::make_unique<TreeObject>(entry->geometry);
+  entry->build(shape, name(id));
   entry->object->setUserData(entry.get());
   impl_->place(*entry, 0.0);
 
@@ -233,10 +254,7 @@ void FclScene::setPose(ColliderId id, const Pose& worldPose, double sweep) {
   if (!worldPose.allFinite())
     throw std::invalid_argument(name(id) + ": world pose is not finite (NaN or inf)");
   Impl::Entry& entry = impl_->at(id);
-  fcl::Transform3d transform = fcl::Transform3d::Identity();
-  transform.linear() = worldPose.rotation.normalized().toRotationMatrix();  // fcl#567
-  transform.translation() = worldPose.position;
-  entry.object->setTransform(transform);
+  entry.setTransform(worldPose);
   impl_->place(entry, std::isfinite(sweep) ? std::max(0.0, sweep) : 0.0);
 }
 
@@ -274,12 +292,138 @@ Aabb FclScene::worldAabb(ColliderId id) const {
 
 FclCollideResult FclScene::collide(ColliderId a, ColliderId b, int maxContacts,
                                    const FclFaultInjector& inject) const {
+  return collidePair(impl_->at(a), impl_->at(b), a, b, maxContacts, inject);
+}
+
+FclDistanceResult FclScene::distance(ColliderId a, ColliderId b,
+                                     const FclFaultInjector& inject) const {
+  return distancePair(impl_->at(a), impl_->at(b), a, b, inject);
+}
+
+// Queries (SceneQuery.hpp): the tree's boxes are the fattened ones, so these candidates are a
+// superset; the exact tests come after.
+namespace {
+
+bool halfspaceReaches(const FclEntry& entry, const fcl::AABBd& box) {
+  const auto& h = static_cast<const fcl::Halfspaced&>(*entry.geometry);
+  const fcl::Halfspaced world = fcl::transform(h, entry.object->getTransform());
+  fcl::Vector3d lowest;  // the box corner deepest along -n
+  for (int k = 0; k < 3; ++k) lowest[k] = world.n[k] > 0 ? box.min_[k] : box.max_[k];
+  return world.n.dot(lowest) <= world.d;
+}
+
+bool segmentCrossesBox(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                       double maxDistance, const fcl::AABBd& box) {
+  double enter = 0.0, leave = maxDistance;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(direction[k]) < 1e-300) {
+      if (origin[k] < box.min_[k] || origin[k] > box.max_[k]) return false;
+      continue;
+    }
+    const double inv = 1.0 / direction[k];
+    double t1 = (box.min_[k] - origin[k]) * inv, t2 = (box.max_[k] - origin[k]) * inv;
+    if (t1 > t2) std::swap(t1, t2);
+    enter = std::max(enter, t1);
+    leave = std::min(leave, t2);
+    if (enter > leave) return false;
+  }
+  return true;
+}
+
+using TreeNode = fcl::detail::NodeBase<fcl::AABBd>;
+
+// Depth-first walk of the tree's boxes; `visitLeaf(entry)` for every leaf `enters` accepts.
+template <class Enters, class Visit>
+void walkTree(const TreeNode* root, const Enters& enters, const Visit& visitLeaf) {
+  if (root == nullptr) return;
+  std::vector<const TreeNode*> stack{root};
+  while (!stack.empty()) {
+    const TreeNode* node = stack.back();
+    stack.pop_back();
+    if (!enters(node->bv)) continue;
+    if (node->isLeaf()) {
+      const auto* object = static_cast<const fcl::CollisionObjectd*>(node->data);
+      visitLeaf(*static_cast<const FclEntry*>(object->getUserData()));
+    } else {
+      stack.push_back(node->children[1]);
+      stack.push_back(node->children[0]);
+    }
+  }
+}
+
+}  // namespace
+
+FclQueryShape::FclQueryShape(const std::shared_ptr<const Shape>& shape)
+    : impl_(std::make_unique<Impl>()) {
+  if (shape &&
+      (std::holds_alternative<Plane>(*shape) || std::holds_alternative<TriangleMesh>(*shape)))
+    throw std::invalid_argument(std::string("query shape: a ") + shapeKindName(*shape) +
+                                " cannot be a query shape (sphere, box, capsule, cylinder or "
+                                "convex_hull)");
+  impl_->entry.build(shape, "query shape");
+  impl_->entry.setTransform(Pose::identity());
+}
+FclQueryShape::~FclQueryShape() = default;
+FclQueryShape::FclQueryShape(FclQueryShape&&) noexcept = default;
+FclQueryShape& FclQueryShape::operator=(FclQueryShape&&) noexcept = default;
+
+void FclQueryShape::setPose(const Pose& worldPose) {
+  if (!worldPose.allFinite())
+    throw std::invalid_argument("query shape: pose is not finite (NaN or inf)");
+  impl_->entry.setTransform(worldPose);
+}
+
+Aabb FclQueryShape::worldAabb() const {
+  const fcl::AABBd box = tightAabb(*impl_->entry.shape, *impl_->entry.object);
+  return {box.min_, box.max_};
+}
+
+const Shape& FclQueryShape::shape() const {
+  return *impl_->entry.shape;
+}
+
+void FclScene::queryAabb(const Aabb& box, std::vector<ColliderId>& out) const {
+  out.clear();
+  const fcl::AABBd query(box.min, box.max);
+  walkTree(
+      impl_->manager.getTree().getRoot(), [&](const fcl::AABBd& bv) { return bv.overlap(query); },
+      [&](const FclEntry& entry) {
+        if (tightAabb(*entry.shape, *entry.object).overlap(query)) out.push_back(entry.id);
+      });
+  for (const auto& [id, entry] : impl_->entries)
+    if (entry->isPlane && halfspaceReaches(*entry, query)) out.push_back(id);
+  std::sort(out.begin(), out.end());
+}
+
+void FclScene::queryRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                        double maxDistance, std::vector<ColliderId>& out) const {
+  out.clear();
+  walkTree(
+      impl_->manager.getTree().getRoot(),
+      [&](const fcl::AABBd& bv) { return segmentCrossesBox(origin, direction, maxDistance, bv); },
+      [&](const FclEntry& entry) { out.push_back(entry.id); });
+  for (const auto& [id, entry] : impl_->entries)
+    if (entry->isPlane) out.push_back(id);
+  std::sort(out.begin(), out.end());
+}
+
+FclCollideResult FclScene::collide(const FclQueryShape& query, ColliderId b,
+                                   int maxContacts) const {
+  return collidePair(query.impl_->entry, impl_->at(b), ColliderId{}, b, maxContacts, {});
+}
+
+FclDistanceResult FclScene::distance(const FclQueryShape& query, ColliderId b) const {
+  return distancePair(query.impl_->entry, impl_->at(b), ColliderId{}, b, {});
+}
+
+namespace {
+
+FclCollideResult collidePair(const FclEntry& ea, const FclEntry& eb, ColliderId a, ColliderId b,
+                             int maxContacts, const FclFaultInjector& inject) {
   FclCollideResult result;
-  const Impl::Entry& ea = impl_->at(a);
-  const Impl::Entry& eb = impl_->at(b);
   const bool swap = eb.isMesh && !ea.isMesh;  // FCL wants the mesh first (docs/fcl-notes.md 4.1)
-  const Impl::Entry& first = swap ? eb : ea;
-  const Impl::Entry& second = swap ? ea : eb;
+  const FclEntry& first = swap ? eb : ea;
+  const FclEntry& second = swap ? ea : eb;
   try {
     if (inject) inject(a, b);
     fcl::CollisionRequestd request(static_cast<std::size_t>(std::max(1, maxContacts)), true);
@@ -319,11 +463,9 @@ FclCollideResult FclScene::collide(ColliderId a, ColliderId b, int maxContacts,
   return result;
 }
 
-FclDistanceResult FclScene::distance(ColliderId a, ColliderId b,
-                                     const FclFaultInjector& inject) const {
+FclDistanceResult distancePair(const FclEntry& ea, const FclEntry& eb, ColliderId a, ColliderId b,
+                               const FclFaultInjector& inject) {
   FclDistanceResult result;
-  const Impl::Entry& ea = impl_->at(a);
-  const Impl::Entry& eb = impl_->at(b);
   if (ea.isPlane || eb.isPlane) {  // LIBCCD segfaults on halfspace distance (fcl#623)
     result.error = "FCL distance is not available for planes";
     return result;
@@ -334,8 +476,8 @@ FclDistanceResult FclScene::distance(ColliderId a, ColliderId b,
     request.gjk_solver_type = fcl::GST_LIBCCD;
     fcl::DistanceResultd raw;
     const bool swap = eb.isMesh && !ea.isMesh;  // meshes first, as for collide
-    const Impl::Entry& first = swap ? eb : ea;
-    const Impl::Entry& second = swap ? ea : eb;
+    const FclEntry& first = swap ? eb : ea;
+    const FclEntry& second = swap ? ea : eb;
     fcl::distance(first.object.get(), second.object.get(), request, raw);
     fcl::Vector3d p1 = raw.nearest_points[0], p2 = raw.nearest_points[1];
     if (first.isMesh && std::holds_alternative<Sphere>(*second.shape)) {
@@ -354,5 +496,7 @@ FclDistanceResult FclScene::distance(ColliderId a, ColliderId b,
   }
   return result;
 }
+
+}  // namespace
 
 }  // namespace coulomb::geometry

@@ -46,6 +46,30 @@ struct FclDistanceResult {
 /// Called inside the guarded region of every query (tests use it to throw as FCL would).
 using FclFaultInjector = std::function<void(ColliderId a, ColliderId b)>;
 
+class FclScene;
+
+/// A shape that is not in a scene, posed for the scene queries of FclScene (overlap, closest
+/// points, shape casts): a sphere, box, capsule, cylinder or convex hull.
+class FclQueryShape {
+ public:
+  /// Throws std::invalid_argument for a missing, invalid, plane or mesh shape.
+  explicit FclQueryShape(const std::shared_ptr<const Shape>& shape);
+  ~FclQueryShape();
+  FclQueryShape(FclQueryShape&&) noexcept;
+  FclQueryShape& operator=(FclQueryShape&&) noexcept;
+  FclQueryShape(const FclQueryShape&) = delete;
+  FclQueryShape& operator=(const FclQueryShape&) = delete;
+
+  void setPose(const Pose& worldPose);   // throws std::invalid_argument if not finite
+  [[nodiscard]] Aabb worldAabb() const;  // tight, at the pose last set
+  [[nodiscard]] const Shape& shape() const;
+
+ private:
+  friend class FclScene;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 class FclScene {
  public:
   /// `aabbMargin` [m] fattens every AABB so pairs closer than it reach the narrow phase.
@@ -81,6 +105,18 @@ class FclScene {
   /// fcl::distance for separated pairs (never with a plane: FCL crashes, fcl#623).
   [[nodiscard]] FclDistanceResult distance(ColliderId a, ColliderId b,
                                            const FclFaultInjector& inject = {}) const;
+
+  /// Scene queries, valid after updateTree: colliders whose tight world AABB overlaps `box`
+  /// (planes whose half-space reaches it), sorted by id.
+  void queryAabb(const Aabb& box, std::vector<ColliderId>& out) const;
+  /// Candidates of a ray (unit `direction`, t in [0, maxDistance]): colliders whose tree box it
+  /// crosses, and every plane; sorted by id. The exact test is rayCastShape (RayCast.hpp).
+  void queryRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double maxDistance,
+                std::vector<ColliderId>& out) const;
+  /// fcl::collide / fcl::distance of a query shape (first, "a") against a collider ("b").
+  [[nodiscard]] FclCollideResult collide(const FclQueryShape& query, ColliderId b,
+                                         int maxContacts) const;
+  [[nodiscard]] FclDistanceResult distance(const FclQueryShape& query, ColliderId b) const;
 
  private:
   struct Impl;
