@@ -3,7 +3,8 @@
 // casts, overlaps, AABB queries and closest points of the World's colliders where they are now.
 // Each call first brings its query scene in line with the World (geometry::SceneQuery::sync:
 // a comparison per collider when only poses changed), so queries always see the current state.
-// One WorldQueries per thread that queries; none may run while the World steps.
+// Bad input (non-finite vectors, a plane as a query shape, an unknown collider) throws
+// CoulombError. One WorldQueries per thread that queries; none may run while the World steps.
 #include <coulomb/engine/World.hpp>
 #include <coulomb/geometry/SceneQuery.hpp>
 

@@ -9,5 +9,6 @@ void bindSolve(pybind11::module_& m);    // solvers(), solve(), residual() (Solv
 void bindCapture(pybind11::module_& m);  // scenes(), capture_problems() (CaptureBindings.cpp)
 void bindRun(pybind11::module_& m);      // run(), run_batch(), conformance cases (RunBindings.cpp)
 void bindWorld(pybind11::module_& m);    // World, Robot (WorldBindings.cpp)
+void bindQueries(pybind11::module_& m);  // World's scene queries (QueryBindings.cpp)
 
 }  // namespace coulomb::python

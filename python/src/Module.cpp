@@ -14,4 +14,5 @@ PYBIND11_MODULE(_coulomb, m) {
   coulomb::python::bindCapture(m);
   coulomb::python::bindRun(m);
   coulomb::python::bindWorld(m);
+  coulomb::python::bindQueries(m);
 }

@@ -33,24 +33,6 @@ using coulomb::geometry::BodyId;
 namespace coulomb::python {
 namespace {
 
-// Handles are (generation << 32 | slot): an id of the engine packed into one Python int.
-template <class Id>
-std::int64_t handleOf(Id id) {
-  return static_cast<std::int64_t>(static_cast<std::uint64_t>(id.generation) << 32 | id.index);
-}
-
-// The live id of a handle, or CoulombError naming it (`what`: "body", "joint").
-template <class Id>
-Id idOf(const PyWorld& w, std::int64_t handle, const char* what) {
-  const auto bits = static_cast<std::uint64_t>(handle);
-  const Id id{static_cast<std::uint32_t>(bits & 0xffffffffu),
-              static_cast<std::uint32_t>(bits >> 32)};
-  if (handle < 0 || !use(w).contains(id))
-    throw CoulombError(std::string(what) + " handle " + std::to_string(handle) +
-                       " is stale or invalid");
-  return id;
-}
-
 BodyId bodyOf(const PyWorld& w, std::int64_t handle) {
   return idOf<BodyId>(w, handle, "body");
 }

@@ -3,7 +3,11 @@
 // overlaps and closest points agree with the resting contact, and removed bodies disappear.
 #include <coulomb/engine/WorldQueries.hpp>
 
+#include <coulomb/engine/CoulombError.hpp>
+
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace coulomb::engine {
 namespace {
@@ -72,7 +76,8 @@ TEST(WorldQueries, ShapeCastOverlapAndClosestPointsOnARestingBox) {
   world.removeBody(box);
   EXPECT_EQ(queries.castRay({0, 0, 1}, {0, 0, -2})->body, ground);
   EXPECT_THROW(static_cast<void>(queries.closestPoints(colliderOf(world, ground), hit->collider)),
-               std::invalid_argument);
+               CoulombError);
+  EXPECT_THROW(static_cast<void>(queries.castRay({0, 0, std::nan("")}, {0, 0, -1})), CoulombError);
 }
 
 }  // namespace

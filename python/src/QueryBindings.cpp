@@ -1,0 +1,193 @@
+// The scene queries of coulomb.World (docs/python.md "Scene queries"; engine/WorldQueries.hpp):
+// ray casts, shape casts, overlaps, AABB queries and closest points of two bodies, on the world
+// as the last step left it. Shapes are given as in the JSON scene format ({"type": "sphere",
+// "radius": 0.1}); hits name bodies and colliders by integer handles.
+#include <coulomb/engine/io/SceneLoader.hpp>
+
+#include <pybind11/stl.h>
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Bindings.hpp"
+#include "NumpyConversion.hpp"
+#include "PyWorld.hpp"
+#include "SceneInput.hpp"
+
+namespace py = pybind11;
+
+namespace coulomb::python {
+namespace {
+
+engine::WorldQueries& queriesOf(PyWorld& w) {
+  use(w);  // refuses while another thread steps the world
+  if (!w.queries) w.queries.emplace(w.world);
+  return *w.queries;
+}
+
+geometry::QueryFilter filterOf(std::uint32_t category, std::uint32_t mask) {
+  geometry::QueryFilter filter;
+  filter.bits.category = category;
+  filter.bits.mask = mask;
+  return filter;
+}
+
+// A shape in the JSON scene format (docs/scene-format.md "Shapes"), parsed as the one shape of
+// a static body so that every check of the scene loader applies.
+std::shared_ptr<const geometry::Shape> shapeOf(const py::dict& desc) {
+  py::dict body;
+  body["name"] = "query";
+  body["type"] = "static";
+  py::list shapes;
+  shapes.append(desc);
+  body["shapes"] = shapes;
+  py::list bodies;
+  bodies.append(body);
+  py::dict scene;
+  scene["name"] = "query shape";
+  scene["bodies"] = bodies;
+  const engine::io::Scene parsed = engine::io::parseScene(jsonText(scene), "query shape");
+  return std::make_shared<const geometry::Shape>(parsed.bodies.at(0).shapes.at(0).shape);
+}
+
+geometry::Pose poseOf(const py::handle& position, const py::handle& rotation) {
+  geometry::Pose pose = geometry::Pose::translation(toVector(position, "position", 3));
+  if (!rotation.is_none()) {
+    const Eigen::VectorXd q = toVector(rotation, "rotation", 4);  // (w, x, y, z)
+    pose.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+    if (!(pose.rotation.norm() > 1e-9))
+      throw engine::CoulombError("rotation: expected a non-zero quaternion (w, x, y, z)");
+    pose.rotation.normalize();
+  }
+  return pose;
+}
+
+py::dict rayDict(const geometry::RayHit& hit) {
+  py::dict d;
+  d["body"] = handleOf(hit.body);
+  d["collider"] = handleOf(hit.collider);
+  d["point"] = toNumpy(Eigen::VectorXd(hit.point));
+  d["normal"] = toNumpy(Eigen::VectorXd(hit.normal));
+  d["fraction"] = hit.fraction;
+  return d;
+}
+
+py::list colliderList(const std::vector<geometry::ColliderId>& ids,
+                      const std::vector<geometry::Collider>& colliders) {
+  py::list out;
+  for (geometry::ColliderId id : ids)
+    for (const geometry::Collider& c : colliders)
+      if (c.id == id) {
+        py::dict d;
+        d["body"] = handleOf(c.body);
+        d["collider"] = handleOf(c.id);
+        out.append(d);
+      }
+  return out;
+}
+
+}  // namespace
+
+void bindQueries(py::module_& m) {
+  auto world =
+      py::reinterpret_borrow<py::class_<PyWorld, std::shared_ptr<PyWorld>>>(m.attr("World"));
+  constexpr std::uint32_t kAll = std::numeric_limits<std::uint32_t>::max();
+  world
+      .def(
+          "cast_ray",
+          [](PyWorld& w, const py::object& origin, const py::object& translation,
+             std::uint32_t category, std::uint32_t mask) -> py::object {
+            const auto hit = queriesOf(w).castRay(toVector(origin, "origin", 3),
+                                                  toVector(translation, "translation", 3),
+                                                  filterOf(category, mask));
+            if (!hit) return py::none();
+            return rayDict(*hit);
+          },
+          py::arg("origin"), py::arg("translation"), py::kw_only(), py::arg("category") = 1u,
+          py::arg("mask") = kAll,
+          "the first hit of the segment origin -> origin + translation: a dict (body, collider, "
+          "point, normal, fraction) or None")
+      .def(
+          "cast_ray_all",
+          [](PyWorld& w, const py::object& origin, const py::object& translation,
+             std::uint32_t category, std::uint32_t mask) {
+            py::list out;
+            for (const geometry::RayHit& hit : queriesOf(w).castRayAll(
+                     toVector(origin, "origin", 3), toVector(translation, "translation", 3),
+                     filterOf(category, mask)))
+              out.append(rayDict(hit));
+            return out;
+          },
+          py::arg("origin"), py::arg("translation"), py::kw_only(), py::arg("category") = 1u,
+          py::arg("mask") = kAll, "every collider the segment meets, by fraction")
+      .def(
+          "cast_shape",
+          [](PyWorld& w, const py::dict& shape, const py::object& start,
+             const py::object& translation, const py::object& rotation, std::uint32_t category,
+             std::uint32_t mask) -> py::object {
+            const auto hit = queriesOf(w).castShape(shapeOf(shape), poseOf(start, rotation),
+                                                    toVector(translation, "translation", 3),
+                                                    filterOf(category, mask));
+            if (!hit) return py::none();
+            py::dict d;
+            d["body"] = handleOf(hit->body);
+            d["collider"] = handleOf(hit->collider);
+            d["point"] = toNumpy(Eigen::VectorXd(hit->point));
+            d["normal"] = toNumpy(Eigen::VectorXd(hit->normal));
+            d["fraction"] = hit->fraction;
+            return d;
+          },
+          py::arg("shape"), py::arg("start"), py::arg("translation"), py::kw_only(),
+          py::arg("rotation") = py::none(), py::arg("category") = 1u, py::arg("mask") = kAll,
+          "sweeps a shape (JSON scene format: sphere, box, capsule, cylinder, convex_hull) from "
+          "start by translation: its first hit as a dict (body, collider, point, normal, "
+          "fraction) or None")
+      .def(
+          "overlap",
+          [](PyWorld& w, const py::dict& shape, const py::object& position,
+             const py::object& rotation, std::uint32_t category, std::uint32_t mask) {
+            engine::WorldQueries& q = queriesOf(w);
+            return colliderList(
+                q.overlap(shapeOf(shape), poseOf(position, rotation), filterOf(category, mask)),
+                w.world.colliders());
+          },
+          py::arg("shape"), py::arg("position"), py::kw_only(), py::arg("rotation") = py::none(),
+          py::arg("category") = 1u, py::arg("mask") = kAll,
+          "the colliders a shape at a pose overlaps: a list of dicts (body, collider)")
+      .def(
+          "query_aabb",
+          [](PyWorld& w, const py::object& lower, const py::object& upper, std::uint32_t category,
+             std::uint32_t mask) {
+            engine::WorldQueries& q = queriesOf(w);
+            const geometry::Aabb box{toVector(lower, "lower", 3), toVector(upper, "upper", 3)};
+            return colliderList(q.queryAabb(box, filterOf(category, mask)), w.world.colliders());
+          },
+          py::arg("lower"), py::arg("upper"), py::kw_only(), py::arg("category") = 1u,
+          py::arg("mask") = kAll,
+          "the colliders whose world AABB overlaps [lower, upper]: a list of dicts (body, "
+          "collider)")
+      .def(
+          "closest_points",
+          [](PyWorld& w, std::int64_t a, std::int64_t b) {
+            const geometry::BodyId ia = idOf<geometry::BodyId>(w, a, "body");
+            const geometry::BodyId ib = idOf<geometry::BodyId>(w, b, "body");
+            engine::WorldQueries& q = queriesOf(w);
+            std::optional<geometry::ClosestPoints> best;
+            for (const geometry::Collider& ca : w.world.colliders())
+              for (const geometry::Collider& cb : w.world.colliders())
+                if (ca.body == ia && cb.body == ib) {
+                  const geometry::ClosestPoints p = q.closestPoints(ca.id, cb.id);
+                  if (!best || p.distance < best->distance) best = p;
+                }
+            if (!best) throw engine::CoulombError("closest_points: a body has no collider");
+            return py::make_tuple(best->distance, toNumpy(Eigen::VectorXd(best->pointA)),
+                                  toNumpy(Eigen::VectorXd(best->pointB)));
+          },
+          py::arg("body_a"), py::arg("body_b"),
+          "(distance [m], point on a, point on b) over the bodies' colliders; a negative "
+          "distance is a penetration depth");
+}
+
+}  // namespace coulomb::python
