@@ -34,6 +34,12 @@ struct BodyDesc {
   std::optional<geometry::SpatialInertia> mass;
   /// Which solvers this body's island gets (nullopt = the world's WorldSettings::solve.choice).
   std::optional<solvers::SolverChoice> solver;
+  /// Continuous collision (Jolt's MotionQuality::LinearCast, Bullet's CCD): for fast, thin or
+  /// spinning bodies. Every step, each pair this body may touch gets its time of impact along
+  /// the motion of the step, and the contact is made at the features that meet then
+  /// (docs/collision.md, "Continuous collision"). Off: no cost. Fast translation alone is caught
+  /// without it by the swept speculative margins.
+  bool continuousCollision = false;
 };
 
 }  // namespace coulomb::engine

@@ -82,6 +82,7 @@ BodyId World::createBody(const BodyDesc& desc) {
     collider.shape = std::move(s.shape);
     collider.material = s.material;
     collider.filter = s.filter;
+    collider.continuous = desc.continuousCollision;
     colliders_.push_back(std::move(collider));
   }
   return id;

@@ -28,11 +28,14 @@ struct CollisionFilter {
 
 struct Collider {
   ColliderId id;
-  BodyId body;                 // owning body; index into the body state arrays
-  Pose localPose;              // shape frame in the body frame
+  BodyId body;                         // owning body; index into the body state arrays
+  Pose localPose;                      // shape frame in the body frame
   std::shared_ptr<const Shape> shape;  // shared: many colliders may use one mesh
   Material material;
   CollisionFilter filter;
+  /// Time of impact over each step against what it may touch (ContinuousCollision.hpp); set
+  /// from BodyDesc::continuousCollision for every collider of the body.
+  bool continuous = false;
 };
 
 }  // namespace coulomb::geometry

@@ -1,5 +1,7 @@
 #include <coulomb/geometry/CollisionPipeline.hpp>
 
+#include <coulomb/geometry/ContinuousCollision.hpp>
+
 #include <coulomb/geometry/ChainContacts.hpp>
 
 #include <algorithm>
@@ -97,12 +99,27 @@ const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Co
                        diagnostics_.failures, sweeps_);
   dropCoveredCapsuleEnds(colliders, shapePoses_, fresh_,
                          &capsuleEndKeys_);  // ghost points of capsule chains
+  // Nothing to do, and nothing spent, unless some collider asked for it.
+  anyContinuous_ = std::any_of(colliders.begin(), colliders.end(),
+                               [](const Collider& c) { return c.continuous; });
+  if (anyContinuous_) {
+    startBodyPoses_.assign(bodyPoses.begin(), bodyPoses.end());
+    applyContinuousCollision(colliders, order_, shapePoses_, bodyPoses, motion, scene_,
+                             continuousTolerance(), fresh_);
+  }
 
   diagnostics_.stats.candidatePairs = pairs.size();
   diagnostics_.stats.touchingPairs = fresh_.size();
   for (const ContactManifold& m : fresh_)
     diagnostics_.stats.contactPoints += static_cast<std::size_t>(m.pointCount);
   return cache_.refresh(fresh_, bodyPoses);  // fresh_ gets the old buffer back for next step
+}
+
+std::size_t CollisionPipeline::clampContinuous(const std::vector<Collider>& colliders,
+                                               BodyState& state, double h) {
+  if (!anyContinuous_ || colliders.size() != shapePoses_.size()) return 0;
+  return clampToTimeOfImpact(colliders, order_, shapePoses_, startBodyPoses_, state, h, scene_,
+                             continuousTolerance(), cache_.manifolds());
 }
 
 }  // namespace coulomb::geometry

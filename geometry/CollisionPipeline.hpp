@@ -2,6 +2,7 @@
 // The collision stage of World::step in one call: colliders + body poses in, persistent
 // manifolds (warm starts carried) and per-pair diagnostics out. Deterministic: the same input
 // gives the same manifolds in the same order, whatever FCL's internal tree order is.
+#include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/BroadPhase.hpp>
 #include <coulomb/geometry/Collider.hpp>
 #include <coulomb/geometry/ContactCache.hpp>
@@ -10,6 +11,7 @@
 #include <coulomb/geometry/NarrowPhase.hpp>
 #include <coulomb/geometry/SweptMargin.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <span>
 #include <string>
@@ -64,6 +66,12 @@ class CollisionPipeline {
     return step(colliders, bodyPoses, SweepMotion{}, keepPair);
   }
 
+  /// After the positions of the step are integrated: stops each body with a continuous collider
+  /// at its first touch with a collider it had a manifold with in this step's step() call
+  /// (ContinuousCollision.hpp). Returns how many bodies were stopped; 0 at no cost when no
+  /// collider is continuous.
+  std::size_t clampContinuous(const std::vector<Collider>& colliders, BodyState& state, double h);
+
   [[nodiscard]] const CollisionDiagnostics& diagnostics() const { return diagnostics_; }
   /// Persistent manifolds; the solver writes applied impulses into their points.
   [[nodiscard]] ContactCache& cache() { return cache_; }
@@ -73,6 +81,12 @@ class CollisionPipeline {
   /// Test hook: runs inside the guarded region of every FCL query (throw to simulate FCL failing).
   void setFaultInjector(FclFaultInjector injector) {
     narrowPhase_.setFaultInjector(std::move(injector));
+  }
+
+  /// [m] The gap at which a pair of a continuous collider counts as touching: a fifth of the
+  /// margin (1 mm by default), since its speculative row covers the rest.
+  [[nodiscard]] double continuousTolerance() const {
+    return std::max(1e-4, 0.2 * settings_.speculativeMargin);
   }
 
   /// The check to run when a collider is created: a message naming the problem, or nullopt.
@@ -86,6 +100,9 @@ class CollisionPipeline {
   ContactCache cache_;
   CollisionDiagnostics diagnostics_;
   std::vector<Pose> shapePoses_;
+  std::vector<Pose> startBodyPoses_;  // the body poses of the last step(), when some collider is
+                                      // continuous (clampContinuous)
+  bool anyContinuous_ = false;
   std::vector<char> usable_;
   std::vector<double> sweeps_;  // [m] per collider (SweptMargin.hpp)
   std::vector<ContactManifold> fresh_;

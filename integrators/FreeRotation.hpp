@@ -5,8 +5,9 @@
 // energy T = sum_k pi_k^2 / (2 I_k) is split per principal axis; each piece is an exact rotation
 // about that axis by h pi_k / I_k, composed as 1(h/2) 2(h/2) 3(h) 2(h/2) 1(h/2).
 // Properties: second order, symplectic, time-reversible; the world angular momentum is conserved
-// exactly (each sub-rotation moves orientation and body momentum together) and |pi| is preserved,
-// so the body cannot blow up at any spin rate.
+// exactly (each sub-rotation moves orientation and body momentum together) and |pi| is preserved.
+// A step turns no axis by more than 1 rad: a faster spinner is sub-stepped, since at radians
+// per step the splitting error pumps energy into the axis of the smallest moment.
 #include <Eigen/Geometry>
 
 namespace coulomb::integrators {

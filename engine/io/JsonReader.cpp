@@ -89,6 +89,11 @@ std::vector<std::string> JsonNode::objectKeys() const {
   return keys;  // nlohmann's default object is a std::map: already sorted
 }
 
+bool JsonNode::boolean() const {
+  if (!value_->is_boolean()) fail("expected true or false");
+  return value_->get<bool>();
+}
+
 double JsonNode::number() const {
   if (!value_->is_number()) fail("expected a number, got " + typeName());
   const double x = value_->get<double>();

@@ -40,6 +40,7 @@ class JsonNode {
   [[nodiscard]] std::vector<std::string> objectKeys() const;  // must be an object, sorted
 
   [[nodiscard]] double number() const;  // finite
+  [[nodiscard]] bool boolean() const;   // true or false
   [[nodiscard]] double positiveNumber() const;
   [[nodiscard]] std::uint64_t unsignedInteger() const;
   [[nodiscard]] std::string string() const;

@@ -182,9 +182,12 @@ Eigen::Matrix3d parseInertia(const JsonNode& node) {
 BodyDesc parseBody(const JsonNode& node, const Materials& materials,
                    const std::filesystem::path& base) {
   node.allowOnly({"name", "type", "position", "orientation", "linear_velocity", "angular_velocity",
-                  "density", "mass", "inertia", "center_of_mass", "shapes", "solver"});
+                  "density", "mass", "inertia", "center_of_mass", "shapes", "solver",
+                  "continuous_collision"});
   BodyDesc desc;
   desc.name = node.string("name", "");
+  if (node.has("continuous_collision"))
+    desc.continuousCollision = node.child("continuous_collision").boolean();
   if (node.has("solver")) desc.solver = parseSolverRequest(node.child("solver"));
   if (node.has("type")) desc.motionType = parseMotionType(node.child("type"));
   desc.pose = parsePose(node);

@@ -7,11 +7,6 @@
 namespace coulomb::engine::io {
 namespace {
 
-bool parseBool(const JsonNode& node) {
-  if (!node.raw().is_boolean()) node.fail("expected true or false");
-  return node.raw().get<bool>();
-}
-
 double nonNegative(const JsonNode& node) {
   const double value = node.number();
   if (value < 0.0) node.fail("must be >= 0");
@@ -95,20 +90,19 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
     options.maxIterations = static_cast<int>(iterations);
   }
   if (node.has("time_limit")) options.timeLimitSeconds = node.child("time_limit").positiveNumber();
-  if (node.has("warm_start")) options.useWarmStart = parseBool(node.child("warm_start"));
+  if (node.has("warm_start")) options.useWarmStart = node.child("warm_start").boolean();
   if (node.has("promote_fallbacks"))
-    settings.solve.promotion.enabled = parseBool(node.child("promote_fallbacks"));
+    settings.solve.promotion.enabled = node.child("promote_fallbacks").boolean();
   ContactSettings& contact = settings.contact;
   if (node.has("restitution_threshold"))
     contact.restitutionThreshold = nonNegative(node.child("restitution_threshold"));
   if (node.has("speculative_contacts"))
-    contact.speculativeContacts = parseBool(node.child("speculative_contacts"));
+    contact.speculativeContacts = node.child("speculative_contacts").boolean();
   if (node.has("speculative_margin"))
     settings.collision.speculativeMargin = nonNegative(node.child("speculative_margin"));
   if (node.has("speculative_sweep"))
     settings.collision.speculativeSweep = nonNegative(node.child("speculative_sweep"));
-  if (node.has("elastic_turning"))
-    contact.elasticTurning = parseBool(node.child("elastic_turning"));
+  if (node.has("elastic_turning")) contact.elasticTurning = node.child("elastic_turning").boolean();
   if (node.has("impact_law")) contact.impactLaw = parseImpactLaw(node.child("impact_law"));
   if (node.has("touching_tolerance"))
     contact.touchingTolerance = nonNegative(node.child("touching_tolerance"));
@@ -123,7 +117,7 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
 
 void parseSleepSection(const JsonNode& node, SleepSettings& sleep) {
   node.allowOnly({"enabled", "linear_speed", "angular_speed", "time"});
-  if (node.has("enabled")) sleep.enabled = parseBool(node.child("enabled"));
+  if (node.has("enabled")) sleep.enabled = node.child("enabled").boolean();
   if (node.has("linear_speed")) sleep.linearSpeed = nonNegative(node.child("linear_speed"));
   if (node.has("angular_speed")) sleep.angularSpeed = nonNegative(node.child("angular_speed"));
   if (node.has("time")) sleep.timeToSleep = nonNegative(node.child("time"));
