@@ -64,7 +64,9 @@ geometry::Pose poseOf(const py::handle& position, const py::handle& rotation) {
   return pose;
 }
 
-py::dict rayDict(const geometry::RayHit& hit) {
+// RayHit and ShapeHit share their fields: one dict for both.
+template <class Hit>
+py::dict hitDict(const Hit& hit) {
   py::dict d;
   d["body"] = handleOf(hit.body);
   d["collider"] = handleOf(hit.collider);
@@ -103,7 +105,7 @@ void bindQueries(py::module_& m) {
                                                   toVector(translation, "translation", 3),
                                                   filterOf(category, mask));
             if (!hit) return py::none();
-            return rayDict(*hit);
+            return hitDict(*hit);
           },
           py::arg("origin"), py::arg("translation"), py::kw_only(), py::arg("category") = 1u,
           py::arg("mask") = kAll,
@@ -117,7 +119,7 @@ void bindQueries(py::module_& m) {
             for (const geometry::RayHit& hit : queriesOf(w).castRayAll(
                      toVector(origin, "origin", 3), toVector(translation, "translation", 3),
                      filterOf(category, mask)))
-              out.append(rayDict(hit));
+              out.append(hitDict(hit));
             return out;
           },
           py::arg("origin"), py::arg("translation"), py::kw_only(), py::arg("category") = 1u,
@@ -131,13 +133,7 @@ void bindQueries(py::module_& m) {
                                                     toVector(translation, "translation", 3),
                                                     filterOf(category, mask));
             if (!hit) return py::none();
-            py::dict d;
-            d["body"] = handleOf(hit->body);
-            d["collider"] = handleOf(hit->collider);
-            d["point"] = toNumpy(Eigen::VectorXd(hit->point));
-            d["normal"] = toNumpy(Eigen::VectorXd(hit->normal));
-            d["fraction"] = hit->fraction;
-            return d;
+            return hitDict(*hit);
           },
           py::arg("shape"), py::arg("start"), py::arg("translation"), py::kw_only(),
           py::arg("rotation") = py::none(), py::arg("category") = 1u, py::arg("mask") = kAll,
