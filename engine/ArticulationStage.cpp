@@ -268,6 +268,18 @@ void ArticulationStage::setMotorTarget(ArticulationId id, int motor, double targ
   r.motors[motor].target = target;
 }
 
+int ArticulationStage::motorOf(ArticulationId id, const std::string& joint) const {
+  const Record& r = record(id);
+  std::string names;
+  for (std::size_t k = 0; k < r.motors.size(); ++k) {
+    const std::string& name = r.model->link(r.motors[k].link).joint.name;
+    if (name == joint) return static_cast<int>(k);
+    names += (names.empty() ? "" : ", ") + quoted(name);
+  }
+  throw CoulombError(quoted(r.name) + ": no motor on a joint named " + quoted(joint) +
+                     " (motorised joints: " + (names.empty() ? "none" : names) + ")");
+}
+
 const std::vector<JointMotorDesc>& ArticulationStage::motors(ArticulationId id) const {
   return record(id).motors;
 }

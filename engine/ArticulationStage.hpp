@@ -82,6 +82,9 @@ class ArticulationStage final : public RowSource {
   void applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd& tau);
   /// Motor `motor` (ArticulationDesc::motors order) gets a new target (finite).
   void setMotorTarget(geometry::ArticulationId id, int motor, double target);
+  /// The index of the motor on the joint named `joint`; CoulombError listing the motorised
+  /// joints if none.
+  [[nodiscard]] int motorOf(geometry::ArticulationId id, const std::string& joint) const;
   /// The motors as created (targets as last set).
   [[nodiscard]] const std::vector<JointMotorDesc>& motors(geometry::ArticulationId id) const;
 

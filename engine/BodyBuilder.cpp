@@ -106,7 +106,7 @@ ResolvedBody resolveBody(const BodyDesc& desc, const WorldSettings& settings) {
       fromShapes = fromShapes + geometry::computeMassProperties(*shape, density).transformed(local);
       hasFiniteShape = true;
     }
-    body.shapes.push_back({std::move(shape), local, s.material, s.filter});
+    body.shapes.push_back({std::move(shape), local, s.material, s.filter, s.sensor, s.userData});
   }
 
   if (dynamic) {

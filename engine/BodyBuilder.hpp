@@ -14,6 +14,8 @@ struct ResolvedShape {
   geometry::Pose localPose;                      // in the COM (body) frame
   geometry::Material material;
   geometry::CollisionFilter filter;
+  bool sensor = false;
+  std::uint64_t userData = 0;
 };
 
 struct ResolvedBody {

@@ -18,6 +18,11 @@ struct ShapeDesc {
   geometry::Pose localPose;  // shape frame in the body's reference frame
   geometry::Material material;
   geometry::CollisionFilter filter;
+  /// A sensor reports overlaps (World::sensorEvents) and never pushes (Collider::sensor). Its
+  /// volume still adds to the body's mass at the body's density; give the body an explicit
+  /// `mass` where that matters.
+  bool sensor = false;
+  std::uint64_t userData = 0;  // the user's value, on the Collider (never read by the engine)
 };
 
 struct BodyDesc {
@@ -40,6 +45,7 @@ struct BodyDesc {
   /// (docs/collision.md, "Continuous collision"). Off: no cost. Fast translation alone is caught
   /// without it by the swept speculative margins.
   bool continuousCollision = false;
+  std::uint64_t userData = 0;  // the user's value (World::userData); never read by the engine
 };
 
 }  // namespace coulomb::engine

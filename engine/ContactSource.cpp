@@ -68,9 +68,10 @@ Eigen::Vector3d centreOf(const geometry::BodyState& state, const geometry::BodyI
 void ContactSource::appendEdges(std::uint8_t owner, const RowContext& context, StepEdges& edges) {
   const std::vector<geometry::ContactManifold>& manifolds = context.manifolds;
   for (std::size_t m = 0; m < manifolds.size(); ++m)
-    edges.add(owner, static_cast<std::int32_t>(m),
-              {static_cast<std::int32_t>(manifolds[m].bodyA.index),
-               static_cast<std::int32_t>(manifolds[m].bodyB.index)});
+    if (!manifolds[m].sensor && manifolds[m].enabled)  // sensors and contacts turned off: no rows
+      edges.add(owner, static_cast<std::int32_t>(m),
+                {static_cast<std::int32_t>(manifolds[m].bodyA.index),
+                 static_cast<std::int32_t>(manifolds[m].bodyB.index)});
 }
 
 void ContactSource::emitRows(std::span<const std::int32_t> items, const RowContext& context,
@@ -96,6 +97,10 @@ void ContactSource::emitRows(std::span<const std::int32_t> items, const RowConte
       frame.centreA = centreOf(state, manifold.bodyA);
       frame.centreB = centreOf(state, manifold.bodyB);
       frame.friction = manifold.friction;
+      // A moving surface (ContactManifold::surfaceVelocity): friction sticks at
+      // t . (v_B - v_A) = -t . s, so u_T carries +t . s.
+      frame.tangentVelocityBias = {manifold.tangent1.dot(manifold.surfaceVelocity),
+                                   manifold.tangent2.dot(manifold.surfaceVelocity)};
       frame.key = contactKey(m, p);
 
       // Newton's restitution law on the normal velocity before the impulse (v*): the target is

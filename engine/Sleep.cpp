@@ -42,11 +42,12 @@ std::size_t Sleep::wakeTouched(const std::vector<geometry::ContactManifold>& man
   resize(state.size());
   std::vector<std::uint8_t>& wasAsleep = wasAsleep_;
   wasAsleep.assign(state.asleep.begin(), state.asleep.end());
+  auto wakes = [&](std::uint32_t i) { return state.isDynamic(i) || state.isMovingKinematic(i); };
   for (const geometry::ContactManifold& m : manifolds) {
     const std::uint32_t a = m.bodyA.index, b = m.bodyB.index;
-    if (a >= state.size() || b >= state.size()) continue;
-    if (state.asleep[a] != 0 && state.isDynamic(b)) wake(a, state);
-    if (state.asleep[b] != 0 && state.isDynamic(a)) wake(b, state);
+    if (m.sensor || a >= state.size() || b >= state.size()) continue;  // sensors never push
+    if (state.asleep[a] != 0 && wakes(b)) wake(a, state);
+    if (state.asleep[b] != 0 && wakes(a)) wake(b, state);
   }
   std::size_t woken = 0;
   for (std::size_t i = 0; i < state.size(); ++i) {

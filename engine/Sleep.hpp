@@ -36,9 +36,10 @@ struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private
 
 class Sleep {
  public:
-  /// Wakes every sleeping group touched by an awake dynamic body in `manifolds` (a body dropped on
-  /// a sleeping stack wakes the stack). Woken bodies get the free-flight velocity of this step
-  /// (gravity h) they missed. Returns the number of bodies woken.
+  /// Wakes every sleeping group touched by an awake dynamic body or a moving kinematic one in
+  /// `manifolds` (a body dropped on a sleeping stack wakes the stack; sensors wake nothing). Woken
+  /// bodies get the free-flight velocity of this step (gravity h) they missed. Returns the number
+  /// of bodies woken.
   std::size_t wakeTouched(const std::vector<geometry::ContactManifold>& manifolds,
                           geometry::BodyState& state, const Eigen::Vector3d& gravity, double h);
   /// Wakes the sleeping group of body `index` (user action: velocity, force, torque).

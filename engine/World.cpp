@@ -20,16 +20,22 @@ void checkChoice(const solvers::SolverRegistry& registry, const solvers::SolverC
     throw CoulombError(who + "unknown solver '" + *unknown + "' (see `coulomb solvers`)");
 }
 
+// The whole settings struct against itself and the registry (`who` starts the message).
+void checkSettings(const WorldSettings& settings, const solvers::SolverRegistry& registry,
+                   const std::string& who) {
+  if (auto problem = settings.validate()) throw CoulombError(who + *problem);
+  if (auto problem = settings.solve.validate(&registry))
+    throw CoulombError(who + *problem + " (see `coulomb solvers`)");
+  if (!registry.find(settings.contact.penetration.solver))
+    throw CoulombError(who + "unknown penetration solver '" + settings.contact.penetration.solver +
+                       "' (see `coulomb solvers`)");
+}
+
 }  // namespace
 
 World::World(WorldSettings settings)
     : settings_(std::move(settings)), collision_(settings_.collision) {
-  if (auto problem = settings_.validate()) throw CoulombError("world settings: " + *problem);
-  if (auto problem = settings_.solve.validate(&registry_))
-    throw CoulombError("world settings: " + *problem + " (see `coulomb solvers`)");
-  if (!registry_.find(settings_.contact.penetration.solver))
-    throw CoulombError("world settings: unknown penetration solver '" +
-                       settings_.contact.penetration.solver + "' (see `coulomb solvers`)");
+  checkSettings(settings_, registry_, "world settings: ");
 }
 
 void World::setSolver(const solvers::SolverChoice& choice) {
@@ -43,6 +49,20 @@ void World::setSolvePolicy(const solvers::SolvePolicy& policy) {
     throw CoulombError("setSolvePolicy: " + *problem + " (see `coulomb solvers`)");
   settings_.solve = policy;
   if (!policy.promotion.enabled) promotion_.resetAll();
+}
+
+void World::setSettings(const WorldSettings& settings) {
+  checkSettings(settings, registry_, "setSettings: ");
+  if (!(settings.collision == collision_.settings()))
+    throw CoulombError(
+        "setSettings: the collision settings (speculative margin and sweep, match distance, mesh "
+        "contacts) are fixed when the World is built; build a new World to change them");
+  const bool wakeAll = settings_.sleep.enabled && !settings.sleep.enabled;
+  settings_ = settings;
+  if (!settings_.solve.promotion.enabled) promotion_.resetAll();
+  if (wakeAll)
+    for (std::size_t i = 0; i < state_.size(); ++i)
+      if (state_.alive[i] != 0 && state_.asleep[i] != 0) sleep_.wake(i, state_);
 }
 
 void World::setSolverOverride(BodyId id, std::optional<solvers::SolverChoice> choice) {
@@ -63,6 +83,7 @@ BodyId World::createBody(const BodyDesc& desc) {
     generations_.push_back(0);
     names_.emplace_back();
     masses_.emplace_back();
+    userData_.emplace_back();
     solverOverrides_.emplace_back();
     promotion_.resize(solverOverrides_.size());
   }
@@ -73,19 +94,52 @@ BodyId World::createBody(const BodyDesc& desc) {
   solverOverrides_[slot] = desc.solver;
   promotion_.reset(slot);
   masses_[slot] = body.massProperties;
+  userData_[slot] = desc.userData;
   const BodyId id{static_cast<std::uint32_t>(slot), generations_[slot]};
-  for (ResolvedShape& s : body.shapes) {
-    geometry::Collider collider;
-    collider.id = geometry::ColliderId{colliderCounter_++, 0};
-    collider.body = id;
-    collider.localPose = s.localPose;
-    collider.shape = std::move(s.shape);
-    collider.material = s.material;
-    collider.filter = s.filter;
-    collider.continuous = desc.continuousCollision;
-    colliders_.push_back(std::move(collider));
-  }
+  for (ResolvedShape& s : body.shapes) attachCollider(id, std::move(s), desc.continuousCollision);
   return id;
+}
+
+geometry::ColliderId World::attachCollider(BodyId body, ResolvedShape shape, bool continuous) {
+  geometry::Collider collider;
+  collider.id =
+      geometry::ColliderId{colliderCounter_++, 0};  // the largest: colliders_ stays sorted
+  collider.body = body;
+  collider.localPose = shape.localPose;
+  collider.shape = std::move(shape.shape);
+  collider.material = shape.material;
+  collider.filter = shape.filter;
+  collider.continuous = continuous;
+  collider.sensor = shape.sensor;
+  collider.userData = shape.userData;
+  colliders_.push_back(std::move(collider));
+  return colliders_.back().id;
+}
+
+geometry::ColliderId World::addCollider(BodyId body, const ShapeDesc& shape) {
+  const std::size_t slot = slotOf(body);
+  // Checked as createBody checks a shape, on a stand-in body of the same type whose explicit
+  // unit mass keeps the resolver from computing one (the body's own mass does not change).
+  BodyDesc probe;
+  probe.name = names_[slot];
+  probe.motionType = state_.motionTypes[slot];
+  probe.mass = geometry::SpatialInertia{1.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()};
+  probe.shapes.push_back(shape);
+  ResolvedBody resolved = resolveBody(probe, settings_);  // throws before anything changes
+  ResolvedShape& s = resolved.shapes.front();
+  s.localPose.position -= masses_[slot].centerOfMass;  // reference frame -> COM frame
+  bool continuous = false;
+  for (const geometry::Collider& c : colliders_)
+    continuous = continuous || (c.body == body && c.continuous);
+  return attachCollider(body, std::move(s), continuous);
+}
+
+void World::removeCollider(geometry::ColliderId id) {
+  const geometry::Collider* c = findCollider(id);
+  if (c == nullptr)
+    throw CoulombError("removeCollider: collider " + std::to_string(id.index) +
+                       " does not exist (removed?)");
+  colliders_.erase(colliders_.begin() + (c - colliders_.data()));
 }
 
 void World::removeBody(BodyId id) {
@@ -97,6 +151,7 @@ void World::removeBody(BodyId id) {
   state_.clear(slot);
   names_[slot].clear();
   masses_[slot] = {};
+  userData_[slot] = 0;
   ++generations_[slot];
   freeSlots_.push_back(static_cast<std::uint32_t>(slot));
 }
@@ -138,6 +193,11 @@ void World::applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd&
 
 void World::setJointMotorTarget(geometry::ArticulationId id, int motor, double target) {
   articulations_.setMotorTarget(id, motor, target);
+}
+
+void World::setJointMotorTarget(geometry::ArticulationId id, const std::string& joint,
+                                double target) {
+  articulations_.setMotorTarget(id, articulations_.motorOf(id, joint), target);
 }
 
 bool World::contains(BodyId id) const {

@@ -4,6 +4,8 @@
 // reads and writes the step's StepData.
 #include <coulomb/engine/ArticulationStage.hpp>
 #include <coulomb/engine/BodyDesc.hpp>
+#include <coulomb/engine/ContactEvents.hpp>
+#include <coulomb/engine/ContactHooks.hpp>
 #include <coulomb/engine/ContactSource.hpp>
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/engine/JointStage.hpp>
@@ -31,6 +33,7 @@ namespace coulomb::engine {
 namespace io {
 struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
 }
+struct ResolvedShape;  // engine/BodyBuilder.hpp
 
 class World {
  public:
@@ -61,6 +64,27 @@ class World {
   void applyForceAtPoint(geometry::BodyId id, const Eigen::Vector3d& force,
                          const Eigen::Vector3d& worldPoint);
   void applyTorque(geometry::BodyId id, const Eigen::Vector3d& torque);
+  /// Kinematic bodies (Jolt's MoveKinematic): sets the velocities that bring the body's
+  /// reference frame (as in BodyDesc::pose) to `target` in one step of h seconds; the next
+  /// step(h) ends there, to rounding, and contacts push what the body meets with those
+  /// velocities (a platform carries a box by friction). Call it every step; a body given no new
+  /// target keeps its velocities. Throws CoulombError for a body that is not kinematic (or is an
+  /// articulation's link), a non-finite or non-unit pose, or h not finite and > 0.
+  void setKinematicTarget(geometry::BodyId id, const geometry::Pose& target, double h);
+  void setKinematicTarget(geometry::BodyId id, const geometry::Pose& target) {
+    setKinematicTarget(id, target, settings_.timeStep);
+  }
+  /// Adds a collider to a live body: `shape` placed in the body's reference frame (as in
+  /// BodyDesc::shapes), checked as createBody checks it. The body's mass, centre of mass and
+  /// inertia stay as they are (as after createBody with an explicit mass): a shape is geometry
+  /// here. CoulombError for a stale body or a bad shape; nothing is added then.
+  geometry::ColliderId addCollider(geometry::BodyId body, const ShapeDesc& shape);
+  /// Removes one collider (its contacts end in the next step's events); CoulombError if absent.
+  /// A body may be left with no collider (it then touches nothing).
+  void removeCollider(geometry::ColliderId id);
+  /// The user's value of a body (BodyDesc::userData); never read by the engine.
+  [[nodiscard]] std::uint64_t userData(geometry::BodyId id) const;
+  void setUserData(geometry::BodyId id, std::uint64_t value);
 
   /// Validates `desc` (ArticulationDesc.hpp) and adds the tree with one Kinematic *proxy* body
   /// per link, named "articulation/link", that carries the link's colliders and follows its pose
@@ -76,6 +100,9 @@ class World {
   void applyJointForces(geometry::ArticulationId id, const Eigen::VectorXd& tau);
   /// Changes the target of motor `motor` (ArticulationDesc::motors order); CoulombError if absent.
   void setJointMotorTarget(geometry::ArticulationId id, int motor, double target);
+  /// The same for the motor of the joint named `joint` (TreeJoint::name, the URDF joint name);
+  /// CoulombError listing the motorised joints if there is none.
+  void setJointMotorTarget(geometry::ArticulationId id, const std::string& joint, double target);
 
   /// Advances by h [s] (finite, > 0; else CoulombError) or by settings().timeStep. The report
   /// is the World's own and is overwritten by the next step (copy it to keep it): one report
@@ -88,6 +115,12 @@ class World {
   [[nodiscard]] const geometry::BodyState& state() const { return state_; }
   [[nodiscard]] const std::vector<geometry::Collider>& colliders() const { return colliders_; }
   [[nodiscard]] const WorldSettings& settings() const { return settings_; }
+  /// Replaces every setting between steps, validated as a whole as the constructor does
+  /// (CoulombError naming the first bad value; nothing changes then). Every field may change
+  /// except `collision`, fixed when the World is built (its margins size the broad phase and
+  /// the contact cache). Turning sleep off wakes the sleeping bodies; turning promotion off drops
+  /// the recorded promotions. docs/embedding.md, "Settings at run time".
+  void setSettings(const WorldSettings& settings);
   void setGravity(const Eigen::Vector3d& gravity);
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] std::uint64_t stepCount() const { return stepCount_; }
@@ -109,6 +142,21 @@ class World {
   [[nodiscard]] const std::vector<geometry::ContactManifold>& contacts() const {
     return collision_.cache().manifolds();
   }
+  /// The collider with this id (colliders() is sorted by id); throws CoulombError if removed.
+  [[nodiscard]] const geometry::Collider& collider(geometry::ColliderId id) const;
+  /// Begin / persist / end events of the contact pairs of the last step, in collider-pair order
+  /// (ContactEvents.hpp); overwritten by the next step.
+  [[nodiscard]] const std::vector<ContactEvent>& contactEvents() const {
+    return events_.contacts();
+  }
+  /// Begin / end of overlaps with sensor colliders (ShapeDesc::sensor) in the last step.
+  [[nodiscard]] const std::vector<SensorEvent>& sensorEvents() const { return events_.sensors(); }
+  /// Which candidate pairs are detected (ContactHooks.hpp); empty (the default) = all that pass
+  /// the category/mask filters. Not part of the state: a snapshot does not carry it.
+  void setContactFilter(ContactFilter filter) { contactFilter_ = std::move(filter); }
+  /// Called for every contact manifold of a step before the solve (ContactHooks.hpp): change
+  /// friction, restitution or surface velocity, or turn the contact off. Empty = none.
+  void setPreSolveHook(PreSolveHook hook) { preSolve_ = std::move(hook); }
   /// The solver registry islands are solved with; add entries to use your own solvers by name.
   [[nodiscard]] solvers::SolverRegistry& solverRegistry() { return registry_; }
   /// Solvers for the island of this body (nullopt = WorldSettings::solve.choice). When an island
@@ -153,6 +201,9 @@ class World {
   void guard(const char* stage, StepReport& report);
   // The stages of step() (WorldStep.cpp), each reading and writing `step_`.
   void detectContacts(double h);
+  void modifyContacts();  // the pre-solve hook
+  geometry::ColliderId attachCollider(geometry::BodyId body, ResolvedShape shape, bool continuous);
+  [[nodiscard]] const geometry::Collider* findCollider(geometry::ColliderId id) const;
   void buildIslands();
   void emitRows(IslandWork& island);
   void solveIsland(IslandWork& island);
@@ -173,6 +224,7 @@ class World {
   std::vector<std::uint32_t> freeSlots_;          // reused lowest-first (deterministic)
   std::vector<std::string> names_;                // per slot
   std::vector<geometry::SpatialInertia> masses_;  // per slot: mass, COM in the reference frame
+  std::vector<std::uint64_t> userData_;           // per slot
   std::vector<geometry::Collider> colliders_;
   std::uint32_t colliderCounter_ = 0;
   std::vector<std::optional<solvers::SolverChoice>> solverOverrides_;  // per slot
@@ -185,10 +237,13 @@ class World {
   ArticulationStage articulations_;
   Quarantine quarantine_;
   solvers::SolverRegistry registry_ = solvers::SolverRegistry::builtIn();
-  StepData step_;                     // this step's data; kept for its capacity
-  StepReport report_;                 // the last step's report; kept for its capacity
-  std::vector<std::string> warned_;   // keys of the StepReport::warnings already given
+  StepData step_;                    // this step's data; kept for its capacity
+  StepReport report_;                // the last step's report; kept for its capacity
+  std::vector<std::string> warned_;  // keys of the StepReport::warnings already given
   ProblemObserver problemObserver_;
+  ContactEvents events_;
+  ContactFilter contactFilter_;
+  PreSolveHook preSolve_;
   double time_ = 0.0;
   std::uint64_t stepCount_ = 0;
 };

@@ -43,6 +43,7 @@ const StepReport& World::step(double h) {
   articulations_.predictVelocities(settings_.gravity, h, state_);    // trees' v* (ABA)
   guard("after the velocity prediction", report);                    // bad v*
   detectContacts(h);  // manifolds, margins swept by v*; touched sleepers wake
+  modifyContacts();   // the user's pre-solve hook: friction, restitution, surface speed, off
   buildIslands();     // edges of every row source -> islands with per-source item lists
   step_.stabilized =  // heavy joint loads: the velocity solve's inertias (as data)
       joints_.stabilizedInverseInertias(state_, h, step_.solveInverseInertias);
@@ -57,8 +58,10 @@ const StepReport& World::step(double h) {
   articulations_.integratePositions(h, state_);       // q+ from qd+; link proxies follow
   collision_.clampContinuous(colliders_, state_, h);  // continuous bodies stop at first touch
   correctPenetrations();                              // split impulse (positions only)
-  joints_.finishStep(state_, step_.activeJoints, h, report.joints);  // reactions, breakage
-  sleep_.update(step_.islands, state_, settings_.sleep, h);          // slow islands fall asleep
+  joints_.finishStep(state_, step_.activeJoints, h, report.joints);   // reactions, breakage
+  sleep_.update(step_.islands, state_, settings_.sleep, h);           // slow islands fall asleep
+  events_.update(collision_.cache().manifolds(), colliders_, state_,  // begin / persist / end
+                 settings_.contact.touchingTolerance);
   report.islands.resize(step_.work.size());
   for (std::size_t k = 0; k < step_.work.size(); ++k)
     fillIslandReport(step_.work[k], report.islands[k]);
@@ -96,10 +99,17 @@ RowSource& World::rowSource(RowOwner owner) {
 void World::detectContacts(double h) {
   const geometry::SweepMotion sweep{state_.linearVelocities, state_.angularVelocities, h};
   collision_.step(colliders_, state_.poses, sweep, [this](const auto& a, const auto& b) {
-    if (!articulations_.keepPair(a.body.index, b.body.index)) return false;
-    if (quarantine_.isolated(a.body.index) || quarantine_.isolated(b.body.index)) return false;
-    return state_.isDynamic(a.body.index) || state_.isDynamic(b.body.index) ||
-           articulations_.isLink(a.body.index) || articulations_.isLink(b.body.index);
+    if (a.sensor && b.sensor) return false;
+    const std::uint32_t i = a.body.index, j = b.body.index;
+    if (!articulations_.keepPair(i, j)) return false;
+    if (quarantine_.isolated(i) || quarantine_.isolated(j)) return false;
+    // A pair is looked at when something in it can move: an awake body, a tree's link, or a
+    // moving kinematic body against a sleeping one (which it wakes).
+    const bool moves = state_.isDynamic(i) || state_.isDynamic(j) || articulations_.isLink(i) ||
+                       articulations_.isLink(j) ||
+                       (state_.asleep[j] != 0 && state_.isMovingKinematic(i)) ||
+                       (state_.asleep[i] != 0 && state_.isMovingKinematic(j));
+    return moves && (!contactFilter_ || contactFilter_(a, b));
   });
   sleep_.wakeTouched(collision_.cache().manifolds(), state_, settings_.gravity, h);
 }

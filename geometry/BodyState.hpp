@@ -40,6 +40,11 @@ struct BodyState {
   [[nodiscard]] bool isDynamic(std::size_t i) const {
     return alive[i] != 0 && motionTypes[i] == MotionType::Dynamic && asleep[i] == 0;
   }
+  /// A kinematic body with a non-zero velocity (it wakes the sleeping bodies it touches).
+  [[nodiscard]] bool isMovingKinematic(std::size_t i) const {
+    return alive[i] != 0 && motionTypes[i] == MotionType::Kinematic &&
+           !(linearVelocities[i].isZero(0.0) && angularVelocities[i].isZero(0.0));
+  }
 
   /// Appends a slot (or reuses slot `index` when index < size()) with the given values.
   /// For a dynamic body `mass` > 0 and `inertiaAboutCom` (body axes) is positive definite; for the

@@ -36,6 +36,12 @@ struct Collider {
   /// Time of impact over each step against what it may touch (ContinuousCollision.hpp); set
   /// from BodyDesc::continuousCollision for every collider of the body.
   bool continuous = false;
+  /// A sensor (trigger volume) is detected like any collider but never pushes: its pairs give
+  /// overlap begin/end events (engine/ContactEvents.hpp) and no contact rows. Two sensors never
+  /// pair.
+  bool sensor = false;
+  /// The user's value (an index, a handle, a pointer cast to an integer); never read by the engine.
+  std::uint64_t userData = 0;
 };
 
 }  // namespace coulomb::geometry

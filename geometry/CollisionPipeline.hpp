@@ -34,6 +34,8 @@ struct CollisionSettings {
   double matchDistance = 0.002;
   /// Contacts FCL may report per mesh pair before it stops (it truncates, docs/fcl-notes.md 4.4).
   int maxMeshContacts = 64;
+
+  bool operator==(const CollisionSettings&) const = default;
 };
 
 struct CollisionStats {

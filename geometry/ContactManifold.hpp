@@ -48,6 +48,13 @@ struct ContactManifold {
   double restitution = 0.0;  // max(e_a, e_b)
   std::array<ContactPoint, kMaxPoints> points{};
   int pointCount = 0;
+  // Set fresh every step by the manifold builder, changed only by the World's pre-solve hook
+  // (engine/ContactHooks.hpp); not carried between steps.
+  bool sensor = false;  // a sensor is in the pair: reported, never solved
+  bool enabled = true;  // false: no rows this step (the hook turned the contact off)
+  /// [m/s] World velocity of B's surface relative to A's (a conveyor belt, a tank track): the
+  /// friction rows drive t . (v_B - v_A + surfaceVelocity) to zero instead of t . (v_B - v_A).
+  Eigen::Vector3d surfaceVelocity = Eigen::Vector3d::Zero();
 
   [[nodiscard]] std::span<ContactPoint> activePoints() {
     return {points.data(), static_cast<std::size_t>(pointCount)};

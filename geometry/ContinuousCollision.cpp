@@ -113,6 +113,7 @@ void forContinuousPairs(const std::vector<Collider>& colliders,
     return *it;
   };
   for (ContactManifold& m : manifolds) {
+    if (m.sensor || !m.enabled) continue;  // nothing to stop at
     const auto ia = indexOf(m.colliderA), ib = indexOf(m.colliderB);
     if (!ia || !ib || !(sweepable(colliders[*ia]) || sweepable(colliders[*ib]))) continue;
     visit(m, *ia, *ib);

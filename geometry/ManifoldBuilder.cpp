@@ -130,6 +130,7 @@ ContactManifold finishManifold(PairContact& raw, const Collider& a, const Collid
   makeTangentFrame(m.normal, m.tangent1, m.tangent2);
   m.friction = std::sqrt(std::max(0.0, a.material.friction * b.material.friction));
   m.restitution = std::max(a.material.restitution, b.material.restitution);
+  m.sensor = a.sensor || b.sensor;
   reduceToFour(m.normal, raw.points);
   m.pointCount = static_cast<int>(raw.points.size());
   for (int i = 0; i < m.pointCount; ++i) {

@@ -31,6 +31,7 @@ RowBlock makeContactRows(const ContactPointFrame& contact) {
   if (frictional) {
     setRow(block, 1, contact, contact.tangent1);
     setRow(block, 2, contact, contact.tangent2);
+    block.bias.tail<2>() = contact.tangentVelocityBias;
   }
   return block;
 }

@@ -20,6 +20,9 @@ struct ContactPointFrame {
   Eigen::Vector3d centreB = Eigen::Vector3d::Zero();
   double friction = 0.0;
   double normalVelocityBias = 0.0;  // added to u_N: restitution target and/or stabilisation
+  /// Added to u_T1, u_T2 (a moving surface; ContactManifold::surfaceVelocity): friction then
+  /// sticks at t . (v_B - v_A) = -bias instead of 0.
+  Eigen::Vector2d tangentVelocityBias = Eigen::Vector2d::Zero();
   std::uint64_t key = 0;
 };
 

@@ -77,6 +77,7 @@ struct JointDef {
   double breakTorque = std::numeric_limits<double>::infinity();
   /// This joint's policy; nullopt = the world's (WorldSettings::jointStabilization).
   std::optional<Stabilization> stabilization;
+  std::uint64_t userData = 0;  // the user's value (World::joint(id).userData); never read
 };
 
 /// nullopt if `def` is usable, else a message naming the first bad value, e.g. "joint 'knee':

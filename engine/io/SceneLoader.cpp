@@ -81,7 +81,8 @@ ShapeDesc parseShape(const JsonNode& node, const Materials& materials,
                                                   "plane",  "convex_hull", "mesh"};
   // Unknown keys are errors; the allowed set depends on the type.
   auto allow = [&](std::initializer_list<const char*> specific) {
-    std::vector<std::string> names = {"type", "position", "orientation", "material", "filter"};
+    std::vector<std::string> names = {"type",     "position", "orientation",
+                                      "material", "filter",   "sensor"};
     names.insert(names.end(), specific.begin(), specific.end());
     for (const auto& [key, unused] : node.raw().items()) {
       if (std::find(names.begin(), names.end(), key) != names.end()) continue;
@@ -156,6 +157,7 @@ ShapeDesc parseShape(const JsonNode& node, const Materials& materials,
     desc.filter.category = bits("category", desc.filter.category);
     desc.filter.mask = bits("mask", desc.filter.mask);
   }
+  if (node.has("sensor")) desc.sensor = node.child("sensor").boolean();
   return desc;
 }
 

@@ -249,6 +249,20 @@ struct SnapshotAccess {
     }
     io(ar, w.sleep_.slowFor_);
     io(ar, w.sleep_.group_);
+    if (ar.version() < 6) {  // format 5 had no touching pairs
+      if constexpr (Ar::kLoading) w.events_.touching_.clear();
+    } else {  // the pairs touching after the last step: the next step's Begin/Persist/End
+      std::vector<ContactEvents::Touch>& touching = w.events_.touching_;
+      const std::size_t n = ar.length(touching.size(), 20, "the touching pairs");
+      if constexpr (Ar::kLoading) touching.assign(n, {});
+      for (ContactEvents::Touch& t : touching) {
+        io(ar, t.colliderA);
+        io(ar, t.colliderB);
+        io(ar, t.bodyA);
+        io(ar, t.bodyB);
+        io(ar, t.sensor);
+      }
+    }
     for (JointStage::Record& r : w.joints_.records_) {
       io(ar, r.broken);
       io(ar, r.warmStarts);
@@ -316,8 +330,9 @@ void restoreChecked(World& world, std::span<const std::uint8_t> bytes, const std
   header.raw(&mark, sizeof mark);
   header.raw(&size, sizeof size);
   header.raw(&checksum, sizeof checksum);
-  if (version != kSnapshotVersion)
-    header.fail("format version " + std::to_string(version) + ", this build reads version " +
+  if (version < kOldestReadableVersion || version > kSnapshotVersion)
+    header.fail("format version " + std::to_string(version) + ", this build reads versions " +
+                std::to_string(kOldestReadableVersion) + " to " +
                 std::to_string(kSnapshotVersion));
   if (mark != kByteOrderMark) header.fail("written on a machine of another byte order");
   if (size != header.remaining())
@@ -325,7 +340,7 @@ void restoreChecked(World& world, std::span<const std::uint8_t> bytes, const std
                 " payload bytes, the data holds " + std::to_string(header.remaining()));
   const std::span<const std::uint8_t> body = bytes.subspan(kHeaderBytes);
   if (fnv1a(body) != checksum) header.fail("corrupt (checksum mismatch)");
-  SnapshotReader reader(body, source);
+  SnapshotReader reader(body, source, version);
   SnapshotAccess::transfer(reader, world);
   if (reader.remaining() != 0)
     reader.fail(std::to_string(reader.remaining()) + " bytes left over after the state");

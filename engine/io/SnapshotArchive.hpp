@@ -5,6 +5,7 @@
 // every length against the bytes left before allocating, so a corrupt or hostile file gives a
 // CoulombError naming the source, never a crash or a huge allocation.
 #include <coulomb/engine/CoulombError.hpp>
+#include <coulomb/engine/io/Snapshot.hpp>
 #include <coulomb/geometry/Ids.hpp>
 #include <coulomb/geometry/Pose.hpp>
 
@@ -23,6 +24,7 @@ namespace coulomb::engine::io {
 class SnapshotWriter {
  public:
   static constexpr bool kLoading = false;
+  [[nodiscard]] std::uint32_t version() const { return kSnapshotVersion; }  // always the newest
   void raw(const void* data, std::size_t n) {
     const auto* p = static_cast<const std::uint8_t*>(data);
     bytes_.insert(bytes_.end(), p, p + n);
@@ -47,8 +49,11 @@ class SnapshotWriter {
 class SnapshotReader {
  public:
   static constexpr bool kLoading = true;
-  SnapshotReader(std::span<const std::uint8_t> bytes, std::string source)
-      : bytes_(bytes), source_(std::move(source)) {}
+  SnapshotReader(std::span<const std::uint8_t> bytes, std::string source,
+                 std::uint32_t version = kSnapshotVersion)
+      : bytes_(bytes), source_(std::move(source)), version_(version) {}
+  /// The format version of the data being read (kOldestReadableVersion .. kSnapshotVersion).
+  [[nodiscard]] std::uint32_t version() const { return version_; }
 
   void raw(void* data, std::size_t n) {
     need(n, "a value");
@@ -95,6 +100,7 @@ class SnapshotReader {
   std::span<const std::uint8_t> bytes_;
   std::size_t offset_ = 0;
   std::string source_;
+  std::uint32_t version_;
 };
 
 // ---- values, the same call for both directions -------------------------------------------------

@@ -10,5 +10,6 @@ void bindCapture(pybind11::module_& m);  // scenes(), capture_problems() (Captur
 void bindRun(pybind11::module_& m);      // run(), run_batch(), conformance cases (RunBindings.cpp)
 void bindWorld(pybind11::module_& m);    // World, Robot (WorldBindings.cpp)
 void bindQueries(pybind11::module_& m);  // World's scene queries (QueryBindings.cpp)
+void bindEvents(pybind11::module_& m);   // World's events, kinematic targets (EventBindings.cpp)
 
 }  // namespace coulomb::python

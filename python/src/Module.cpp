@@ -15,4 +15,5 @@ PYBIND11_MODULE(_coulomb, m) {
   coulomb::python::bindRun(m);
   coulomb::python::bindWorld(m);
   coulomb::python::bindQueries(m);
+  coulomb::python::bindEvents(m);
 }

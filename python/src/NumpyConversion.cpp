@@ -1,5 +1,7 @@
 #include "NumpyConversion.hpp"
 
+#include <coulomb/engine/CoulombError.hpp>
+
 #include <string_view>
 
 namespace py = pybind11;
@@ -82,6 +84,18 @@ py::array_t<double> toNumpy(const Eigen::MatrixXd& m) {
   for (Eigen::Index i = 0; i < m.rows(); ++i)
     for (Eigen::Index j = 0; j < m.cols(); ++j) view(i, j) = m(i, j);
   return out;
+}
+
+geometry::Pose poseFrom(pybind11::handle position, pybind11::handle rotation) {
+  geometry::Pose pose = geometry::Pose::translation(toVector(position, "position", 3));
+  if (!rotation.is_none()) {
+    const Eigen::VectorXd q = toVector(rotation, "rotation", 4);  // (w, x, y, z)
+    pose.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+    if (!(pose.rotation.norm() > 1e-9))
+      throw engine::CoulombError("rotation: expected a non-zero quaternion (w, x, y, z)");
+    pose.rotation.normalize();
+  }
+  return pose;
 }
 
 }  // namespace coulomb::python

@@ -4,6 +4,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <coulomb/geometry/Pose.hpp>
+
 #include <Eigen/Core>
 
 #include <string>
@@ -20,6 +22,10 @@ Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1> toIndices(pybind11::handle object
 /// A 2-d array of real numbers of shape (rows, cols) (-1: any) as a matrix (copied).
 Eigen::MatrixXd toMatrix(pybind11::handle object, const std::string& name, Eigen::Index rows,
                          Eigen::Index cols);
+
+/// A pose from a position (3) and an optional rotation quaternion (w, x, y, z; None: identity),
+/// normalized; CoulombError for a zero quaternion.
+geometry::Pose poseFrom(pybind11::handle position, pybind11::handle rotation);
 
 /// Fresh NumPy arrays owning a copy.
 pybind11::array_t<double> toNumpy(const Eigen::VectorXd& v);

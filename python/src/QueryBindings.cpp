@@ -52,18 +52,6 @@ std::shared_ptr<const geometry::Shape> shapeOf(const py::dict& desc) {
   return std::make_shared<const geometry::Shape>(parsed.bodies.at(0).shapes.at(0).shape);
 }
 
-geometry::Pose poseOf(const py::handle& position, const py::handle& rotation) {
-  geometry::Pose pose = geometry::Pose::translation(toVector(position, "position", 3));
-  if (!rotation.is_none()) {
-    const Eigen::VectorXd q = toVector(rotation, "rotation", 4);  // (w, x, y, z)
-    pose.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
-    if (!(pose.rotation.norm() > 1e-9))
-      throw engine::CoulombError("rotation: expected a non-zero quaternion (w, x, y, z)");
-    pose.rotation.normalize();
-  }
-  return pose;
-}
-
 // RayHit and ShapeHit share their fields: one dict for both.
 template <class Hit>
 py::dict hitDict(const Hit& hit) {
@@ -76,17 +64,14 @@ py::dict hitDict(const Hit& hit) {
   return d;
 }
 
-py::list colliderList(const std::vector<geometry::ColliderId>& ids,
-                      const std::vector<geometry::Collider>& colliders) {
+py::list colliderList(const std::vector<geometry::ColliderId>& ids, const engine::World& world) {
   py::list out;
-  for (geometry::ColliderId id : ids)
-    for (const geometry::Collider& c : colliders)
-      if (c.id == id) {
-        py::dict d;
-        d["body"] = handleOf(c.body);
-        d["collider"] = handleOf(c.id);
-        out.append(d);
-      }
+  for (geometry::ColliderId id : ids) {
+    py::dict d;
+    d["body"] = handleOf(world.collider(id).body);
+    d["collider"] = handleOf(id);
+    out.append(d);
+  }
   return out;
 }
 
@@ -129,7 +114,7 @@ void bindQueries(py::module_& m) {
           [](PyWorld& w, const py::dict& shape, const py::object& start,
              const py::object& translation, const py::object& rotation, std::uint32_t category,
              std::uint32_t mask) -> py::object {
-            const auto hit = queriesOf(w).castShape(shapeOf(shape), poseOf(start, rotation),
+            const auto hit = queriesOf(w).castShape(shapeOf(shape), poseFrom(start, rotation),
                                                     toVector(translation, "translation", 3),
                                                     filterOf(category, mask));
             if (!hit) return py::none();
@@ -146,8 +131,8 @@ void bindQueries(py::module_& m) {
              const py::object& rotation, std::uint32_t category, std::uint32_t mask) {
             engine::WorldQueries& q = queriesOf(w);
             return colliderList(
-                q.overlap(shapeOf(shape), poseOf(position, rotation), filterOf(category, mask)),
-                w.world.colliders());
+                q.overlap(shapeOf(shape), poseFrom(position, rotation), filterOf(category, mask)),
+                w.world);
           },
           py::arg("shape"), py::arg("position"), py::kw_only(), py::arg("rotation") = py::none(),
           py::arg("category") = 1u, py::arg("mask") = kAll,
@@ -158,7 +143,7 @@ void bindQueries(py::module_& m) {
              std::uint32_t mask) {
             engine::WorldQueries& q = queriesOf(w);
             const geometry::Aabb box{toVector(lower, "lower", 3), toVector(upper, "upper", 3)};
-            return colliderList(q.queryAabb(box, filterOf(category, mask)), w.world.colliders());
+            return colliderList(q.queryAabb(box, filterOf(category, mask)), w.world);
           },
           py::arg("lower"), py::arg("upper"), py::kw_only(), py::arg("category") = 1u,
           py::arg("mask") = kAll,

@@ -8,6 +8,7 @@
 #include "SceneRun.hpp"
 
 #ifdef COULOMB_HAVE_VIEWER
+#include "Game.hpp"
 #include "Renderer.hpp"
 #include "Viewer.hpp"
 #endif
@@ -32,7 +33,8 @@ void addSceneOptions(CLI::App* command, ViewCommandOptions& o) {
   command
       ->add_option(
           "scene", o.scene,
-          "Built-in scene name, path to a .json scene or a .urdf robot (placed on a floor)")
+          "Built-in scene name, path to a .json scene or a .urdf robot (placed on a floor); "
+          "`view embedding` runs the game-like sample of samples/embedding")
       ->required();
   command->add_flag("--floating", o.overrides.urdfFloating, "A .urdf robot gets a floating base");
   command->add_flag("--limp", o.overrides.urdfLimp, "A .urdf robot's joints are not held");
@@ -50,7 +52,31 @@ void addSceneOptions(CLI::App* command, ViewCommandOptions& o) {
 
 #ifdef COULOMB_HAVE_VIEWER
 
+// `coulomb view embedding`: the game-like sample of samples/embedding, driven frame by frame.
+void viewGame(viewer::ViewOptions options) {
+  options.title = "embedding (samples/embedding)";
+  auto bodies = std::make_shared<samples::GameBodies>();
+  auto director = std::make_shared<std::optional<samples::GameDirector>>();
+  const samples::GameSettings settings;
+  viewer::runViewer([bodies] { return samples::makeGameWorld(*bodies); }, settings.frameTime,
+                    options,
+                    [bodies, director](engine::World& world, bool fresh) {
+                      if (fresh) director->emplace(*bodies);
+                      (*director)->beforeStep(world);
+                    });
+}
+
 void view(const ViewCommandOptions& o) {
+  if (o.scene == "embedding") {
+    viewer::ViewOptions options;
+    options.width = o.width.value_or(options.width);
+    options.height = o.height.value_or(options.height);
+    options.frames = o.frames;
+    options.screenshot = o.screenshot;
+    viewGame(options);
+    if (!o.screenshot.empty()) std::cout << "screenshot " << o.screenshot << "\n";
+    return;
+  }
   const engine::io::Scene scene = loadScene(o.scene, o.overrides);
   viewer::ViewOptions options;
   options.title = scene.name;

@@ -21,9 +21,15 @@ struct ViewOptions {
 /// Builds the scene's World afresh: at start and on every reset.
 using WorldFactory = std::function<engine::World()>;
 
+/// Called before every step the viewer takes: a game's logic (spawning, kinematic targets,
+/// reading the last step's events). `fresh` is true on the first call after the World was built
+/// or rebuilt (reset). Empty: none.
+using StepHook = std::function<void(engine::World& world, bool fresh)>;
+
 /// Opens the window and runs until it is closed (or for options.frames frames). Throws
 /// std::runtime_error when no window can be opened (no display: use `xvfb-run -a`) or the
 /// screenshot cannot be written.
-void runViewer(const WorldFactory& makeWorld, double timeStep, const ViewOptions& options);
+void runViewer(const WorldFactory& makeWorld, double timeStep, const ViewOptions& options,
+               const StepHook& beforeStep = {});
 
 }  // namespace coulomb::viewer

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "Image.hpp"
 #include "SceneBounds.hpp"
@@ -137,7 +138,8 @@ Image readFramebuffer(int width, int height) {
 
 }  // namespace
 
-void runViewer(const WorldFactory& makeWorld, double timeStep, const ViewOptions& options) {
+void runViewer(const WorldFactory& makeWorld, double timeStep, const ViewOptions& options,
+               const StepHook& beforeStep) {
   glfwSetErrorCallback(onGlfwError);
   WindowSession session;
   if (glfwInit() == GLFW_FALSE)
@@ -171,6 +173,7 @@ void runViewer(const WorldFactory& makeWorld, double timeStep, const ViewOptions
   ImGui_ImplOpenGL2_Init();
 
   auto world = std::make_unique<engine::World>(makeWorld());
+  bool fresh = true;  // for beforeStep
   const std::vector<std::string> choices = solverChoices(*world);
   SceneDrawer drawer;
   int fbWidth = 0, fbHeight = 0;
@@ -186,6 +189,7 @@ void runViewer(const WorldFactory& makeWorld, double timeStep, const ViewOptions
     if (state.resetRequested) {
       state.resetRequested = false;
       world = std::make_unique<engine::World>(makeWorld());
+      fresh = true;
       drawer.clear();
       state.solverChanged = state.solverIndex != 0;
       state.hasReport = false;
@@ -210,7 +214,10 @@ void runViewer(const WorldFactory& makeWorld, double timeStep, const ViewOptions
     }
     const int steps = state.paused ? (state.stepOnce ? 1 : 0) : state.stepsPerFrame;
     state.stepOnce = false;
-    for (int k = 0; k < steps; ++k) record(state, world->step(state.timeStep));
+    for (int k = 0; k < steps; ++k) {
+      if (beforeStep) beforeStep(*world, std::exchange(fresh, false));
+      record(state, world->step(state.timeStep));
+    }
 
     drawer.draw(*world, camera, fbWidth, fbHeight, state.draw);
     ImGui_ImplOpenGL2_NewFrame();
