@@ -4,7 +4,7 @@
 // number of unknowns, the arm island's size.
 #include <benchmark/benchmark.h>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 #include <coulomb/joints/ContactRows.hpp>
 
 #include <string>

@@ -8,7 +8,7 @@
 //   build/bin/QueryCost [--steps N] [--queries N] SCENE...
 //   e.g. build/bin/QueryCost --steps 100 box_pile_1000
 #include <coulomb/engine/WorldQueries.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include "scenes/SceneRegistry.hpp"
 

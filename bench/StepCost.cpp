@@ -7,7 +7,7 @@
 //   build/bin/StepCost [--warmup N] [--steps N] SCENE...
 //   e.g. build/bin/StepCost --steps 300 box_incline_A_stick pyramid_10 chain_10
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include "scenes/SceneRegistry.hpp"
 #include "support/HeapCounter.hpp"

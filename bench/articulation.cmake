@@ -6,6 +6,6 @@ coulomb_add_bench(ArticulationBench.cpp LINKS coulomb::joints coulomb::integrato
 target_compile_definitions(ArticulationBench PRIVATE
                            COULOMB_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
 # Articulations in the World: contact assembly of a tree with 10 contacts, ms/step of the arm scene.
-coulomb_add_bench(ArticulationContactBench.cpp LINKS coulomb::engine)
+coulomb_add_bench(ArticulationContactBench.cpp LINKS coulomb::io)
 target_compile_definitions(ArticulationContactBench PRIVATE
                            COULOMB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -1,5 +1,9 @@
+# The installed package: one export set per component, so that find_package(coulomb CONFIG
+# COMPONENTS core) looks for Eigen, FCL and libccd only (cmake/coulombConfig.cmake.in).
 include(CMakePackageConfigHelpers)
-install(EXPORT coulombTargets NAMESPACE coulomb:: DESTINATION lib/cmake/coulomb)
+foreach(component Core Meshes Urdf Io)
+  install(EXPORT coulomb${component}Targets NAMESPACE coulomb:: DESTINATION lib/cmake/coulomb)
+endforeach()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/coulombConfig.cmake.in
   ${PROJECT_BINARY_DIR}/coulombConfig.cmake INSTALL_DESTINATION lib/cmake/coulomb)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/coulombConfigVersion.cmake

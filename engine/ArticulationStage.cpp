@@ -3,7 +3,6 @@
 #include <coulomb/engine/ArticulationStage.hpp>
 #include <coulomb/engine/BodyBuilder.hpp>
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/geometry/MakeConvexHull.hpp>
 #include <coulomb/geometry/MassProperties.hpp>
 #include <coulomb/integrators/ArticulationIntegrator.hpp>
 #include <coulomb/joints/tree/TreeKinematics.hpp>
@@ -39,10 +38,9 @@ geometry::SpatialInertia linkInertia(const ArticulationLinkDesc& link,
     if (std::holds_alternative<geometry::Plane>(s.shape)) continue;
     if (auto problem = geometry::validateShape(s.shape))
       throw CoulombError(where + ": " + *problem);
-    geometry::Shape shape = s.shape;
-    if (auto* hull = std::get_if<geometry::ConvexHull>(&shape); hull && hull->triangles.empty())
-      *hull = geometry::makeConvexHull(hull->vertices);
-    sum = sum + geometry::computeMassProperties(shape, density).transformed(s.localPose);
+    if (auto* hull = std::get_if<geometry::ConvexHull>(&s.shape); hull && hull->triangles.empty())
+      throw CoulombError(where + ": " + kHullNeedsFaces);
+    sum = sum + geometry::computeMassProperties(s.shape, density).transformed(s.localPose);
   }
   return sum;  // mass 0 without shapes: a massless frame (allowed by the tree model)
 }

@@ -49,7 +49,7 @@ struct LinkRef {
 };
 
 namespace io {
-struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
+struct SnapshotAccess;  // io/Snapshot.cpp saves and restores the private state
 }
 
 class ArticulationStage final : public RowSource {

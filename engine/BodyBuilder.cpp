@@ -1,7 +1,6 @@
 #include <coulomb/engine/BodyBuilder.hpp>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/geometry/HullContacts.hpp>
-#include <coulomb/geometry/MakeConvexHull.hpp>
 #include <coulomb/geometry/MassProperties.hpp>
 
 #include <cmath>
@@ -92,11 +91,7 @@ ResolvedBody resolveBody(const BodyDesc& desc, const WorldSettings& settings) {
     auto shape = std::make_shared<geometry::Shape>(s.shape);
     if (auto* hull = std::get_if<geometry::ConvexHull>(shape.get()); hull) {
       if (hull->triangles.empty()) {
-        try {
-          *hull = geometry::makeConvexHull(hull->vertices);
-        } catch (const std::invalid_argument& e) {
-          fail(where + " (convex_hull): " + e.what());
-        }
+        fail(where + ": " + kHullNeedsFaces);
       } else if (hull->faces.empty()) {  // triangles given without faces: the queries need both
         geometry::buildHullFaces(*hull);
       }

@@ -30,4 +30,10 @@ struct ResolvedBody {
 /// inequality, a dynamic body with neither finite shapes nor an explicit mass.
 ResolvedBody resolveBody(const BodyDesc& desc, const WorldSettings& settings);
 
+/// Why a convex hull given as points alone is refused: the core builds no hulls (qhull is the
+/// optional component coulomb::meshes; scene files build theirs when they are read).
+inline constexpr const char* kHullNeedsFaces =
+    "convex_hull given as points only: build its faces with coulomb::makeConvexHull(points) "
+    "(component coulomb::meshes, <coulomb/meshes.hpp>)";
+
 }  // namespace coulomb::engine

@@ -18,7 +18,7 @@
 namespace coulomb::engine {
 
 namespace io {
-struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the touching pairs
+struct SnapshotAccess;  // io/Snapshot.cpp saves and restores the touching pairs
 }
 
 enum class ContactEventType : std::uint8_t {

@@ -29,7 +29,7 @@ struct JointReaction {
 using JointDesc = joints::JointDef;
 
 namespace io {
-struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
+struct SnapshotAccess;  // io/Snapshot.cpp saves and restores the private state
 }
 
 class JointStage final : public RowSource {

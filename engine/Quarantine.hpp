@@ -27,7 +27,7 @@
 namespace coulomb::engine {
 
 namespace io {
-struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the flags
+struct SnapshotAccess;  // io/Snapshot.cpp saves and restores the flags
 }
 
 class Quarantine {

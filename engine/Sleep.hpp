@@ -31,7 +31,7 @@ struct SleepSettings {
 };
 
 namespace io {
-struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
+struct SnapshotAccess;  // io/Snapshot.cpp saves and restores the private state
 }
 
 class Sleep {

@@ -31,7 +31,7 @@
 namespace coulomb::engine {
 
 namespace io {
-struct SnapshotAccess;  // engine/io/Snapshot.cpp saves and restores the private state
+struct SnapshotAccess;  // io/Snapshot.cpp saves and restores the private state
 }
 struct ResolvedShape;  // engine/BodyBuilder.hpp
 
@@ -196,7 +196,7 @@ class World {
   void setProblemObserver(ProblemObserver observer) { problemObserver_ = std::move(observer); }
 
  private:
-  friend struct io::SnapshotAccess;  // engine/io/Snapshot.cpp: saves and restores the state
+  friend struct io::SnapshotAccess;  // io/Snapshot.cpp: saves and restores the state
   /// Quarantines every dynamic body whose state is bad after `stage` (engine/Quarantine.hpp).
   void guard(const char* stage, StepReport& report);
   // The stages of step() (WorldStep.cpp), each reading and writing `step_`.

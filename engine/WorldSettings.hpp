@@ -15,7 +15,7 @@
 
 namespace coulomb::engine {
 
-/// Every field is saved by snapshots: a new field needs a line in engine/io/Snapshot.cpp
+/// Every field is saved by snapshots: a new field needs a line in io/Snapshot.cpp
 /// (transferSettings), or a restored World keeps its own value of it.
 struct WorldSettings {
   /// [m/s^2] Uniform gravitational acceleration. Default: standard gravity along -z (z up, as in

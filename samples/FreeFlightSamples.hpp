@@ -2,7 +2,7 @@
 // The free-flight samples (projectile, torque-free symmetric top, Dzhanibekov flip): each runs its
 // built-in scene and measures it against the closed form or the invariants of the motion.
 // Shared by `coulomb demo`, the sample programs and the tests.
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <ostream>
 

@@ -3,7 +3,7 @@
 // with one primitive shape each, explicit mass and principal inertia, one material, and ball
 // joints. It is made from Coulomb's built-in scene (samples/scenes/*.json, written after
 // docs/conformance.md part A), so every engine builds exactly the same scene from one source.
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <Eigen/Geometry>
 

@@ -1,7 +1,7 @@
 #include "entries/FuzzEntries.hpp"
 
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/UrdfLoader.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
 
 #include <cmath>
 #include <exception>

@@ -3,7 +3,7 @@
 // with the world's warm start), the way `coulomb run --capture` writes them, but in memory and
 // with every row kind kept.
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
 
 #include <pybind11/stl.h>

@@ -2,7 +2,7 @@
 // ray casts, shape casts, overlaps, AABB queries and closest points of two bodies, on the world
 // as the last step left it. Shapes are given as in the JSON scene format ({"type": "sphere",
 // "radius": 0.1}); hits name bodies and colliders by integer handles.
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <pybind11/stl.h>
 

@@ -5,7 +5,7 @@
 // bit-identical whatever the thread count.
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <pybind11/stl.h>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Scenes as Python gives them (a built-in name, a JSON or URDF file path, or a dict in the JSON
 // scene format) with the CLI's overrides, for coulomb.run, run_batch and World.
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <pybind11/pybind11.h>
 

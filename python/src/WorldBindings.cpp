@@ -6,9 +6,9 @@
 #include <coulomb/engine/ArticulationStage.hpp>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
-#include <coulomb/engine/io/Snapshot.hpp>
-#include <coulomb/engine/io/UrdfScene.hpp>
+#include <coulomb/io/SceneLoader.hpp>
+#include <coulomb/io/Snapshot.hpp>
+#include <coulomb/io/UrdfScene.hpp>
 
 #include <pybind11/stl.h>
 

@@ -4,7 +4,7 @@
 // JSON), plus the per-solver summary printed on stdout.
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <fstream>
 #include <ostream>

@@ -1,6 +1,6 @@
 // `coulomb run`, `coulomb scenes` and `coulomb demo` (docs/architecture.md section 0).
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/Snapshot.hpp>
+#include <coulomb/io/Snapshot.hpp>
 
 #include <cstdio>
 #include <fstream>
@@ -72,7 +72,7 @@ std::string jsonVector(const Eigen::Vector3d& v) {
 void run(const RunOptions& options) {
   const engine::io::Scene scene = loadScene(options.scene, options.overrides);
   engine::World world = buildWorldFor(scene);
-  if (!options.loadSnapshotPath.empty())  // the same scene, continued (engine/io/Snapshot.hpp)
+  if (!options.loadSnapshotPath.empty())  // the same scene, continued (io/Snapshot.hpp)
     engine::io::loadSnapshotFile(world, options.loadSnapshotPath);
 
   std::optional<std::ofstream> trajectory;

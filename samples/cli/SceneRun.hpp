@@ -6,7 +6,7 @@
 // after min(20, steps/10) warm-up steps.
 #include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <Eigen/Core>
 

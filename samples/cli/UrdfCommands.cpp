@@ -1,7 +1,7 @@
 // `coulomb urdf info FILE [--json] [--floating]` and `coulomb urdf dynamics FILE --state S.json`
 // (docs/urdf.md): what a URDF becomes, and its forward dynamics for a check against another tool.
-#include <coulomb/engine/io/UrdfLoader.hpp>
-#include <coulomb/engine/io/UrdfReport.hpp>
+#include <coulomb/io/UrdfReport.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
 
 #include <fstream>
 #include <iostream>

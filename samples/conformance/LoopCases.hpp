@@ -6,7 +6,7 @@
 // ("double_loop/mu=0.1" ...), samples/double_loop.cpp and tests/conformance/DoubleLoopTest.cpp.
 #include "ConformanceCase.hpp"
 
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <cstddef>
 #include <string>

@@ -1,7 +1,7 @@
 #include "SceneOverrides.hpp"
 
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/UrdfScene.hpp>
+#include <coulomb/io/UrdfScene.hpp>
 
 #include <cmath>
 

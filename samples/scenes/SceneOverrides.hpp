@@ -2,7 +2,7 @@
 // A scene with a caller's overrides (time step, step count, solver, tolerance, iteration cap,
 // friction, URDF base): what `coulomb run --dt --steps --solver --tol --max-iter --mu` and
 // Python's coulomb.run(dt=, steps=, solver=, tol=, max_iterations=, mu=) change, in one place.
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <cstdint>
 #include <optional>

@@ -1,7 +1,7 @@
 #pragma once
 // The built-in scenes (samples/scenes/*.json, embedded into the binary at build time), shared by
 // the CLI, the samples, the tests and the benchmarks.
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <span>
 #include <string>

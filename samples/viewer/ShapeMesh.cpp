@@ -1,7 +1,7 @@
 #include "ShapeMesh.hpp"
 
 #include <coulomb/geometry/ContactManifold.hpp>
-#include <coulomb/geometry/MakeConvexHull.hpp>
+#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <Eigen/Geometry>
 

@@ -7,7 +7,7 @@
 // fallback that remains.
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/Snapshot.hpp>
+#include <coulomb/io/Snapshot.hpp>
 
 #include "scenes/SceneRegistry.hpp"
 

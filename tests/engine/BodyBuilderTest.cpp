@@ -4,6 +4,7 @@
 #include <coulomb/engine/BodyBuilder.hpp>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
+#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <cmath>
 #include <functional>
@@ -131,12 +132,16 @@ TEST(BodyBuilder, DynamicBodyNeedsMass) {
   EXPECT_NO_THROW(engine::resolveBody(marker, {}));
 }
 
-TEST(BodyBuilder, ConvexHullFacesAreBuilt) {
+// The core takes hulls with faces only (qhull is the meshes component): points alone are refused
+// with the way to build them, and makeConvexHull's hull is used as it is.
+TEST(BodyBuilder, ConvexHullsNeedTheirFaces) {
   BodyDesc desc = validBox();
   geometry::ConvexHull hull;
   for (int i = 0; i < 8; ++i)
     hull.vertices.emplace_back((i & 1) ? 0.5 : -0.5, (i & 2) ? 0.5 : -0.5, (i & 4) ? 0.5 : -0.5);
   desc.shapes[0].shape = hull;
+  expectRejected(desc, {"shapes[0]", "points only", "coulomb::makeConvexHull"});
+  desc.shapes[0].shape = geometry::makeConvexHull(hull.vertices);
   const engine::ResolvedBody body = engine::resolveBody(desc, {});
   EXPECT_EQ(std::get<geometry::ConvexHull>(*body.shapes[0].shape).triangles.size(), 12u);
   EXPECT_NEAR(body.massProperties.mass, 1000.0, 1e-9);

@@ -3,7 +3,7 @@
 // never push, sleeping pairs that stay touching, and snapshots that carry the touching pairs.
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/Snapshot.hpp>
+#include <coulomb/io/Snapshot.hpp>
 
 #include "SimpleBodies.hpp"
 

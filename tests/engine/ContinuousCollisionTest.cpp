@@ -4,7 +4,7 @@
 // speed) a 1 cm wall at dt = 1/60; the scene format's key and its error.
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/WorldQueries.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // pendulum_reduced (docs/scene-specifications.md B8, reduced variant) and arm_pushing_boxes.
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <cmath>
 #include <string>

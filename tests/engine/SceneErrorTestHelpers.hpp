@@ -2,7 +2,7 @@
 // Shared by the scene-loader tests: the message a scene text is refused with, and a substring
 // check that prints the whole message when it fails.
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // names the source, the JSON path and the problem.
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 #include "SceneErrorTestHelpers.hpp"
 
 #include <Eigen/Geometry>

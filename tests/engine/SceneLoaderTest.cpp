@@ -2,7 +2,7 @@
 // the JSON path and the problem (unknown keys with the nearest known key).
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 #include "SceneErrorTestHelpers.hpp"
 
 #include <string>

@@ -1,7 +1,7 @@
 // The "solver" section of a JSON scene and a body's "solver" override (docs/scene-format.md).
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <string>
 

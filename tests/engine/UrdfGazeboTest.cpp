@@ -1,9 +1,9 @@
-// engine/io/UrdfGazebo: <gazebo> extensions as robot descriptions write them (docs/urdf.md,
+// urdf/UrdfGazebo: <gazebo> extensions as robot descriptions write them (docs/urdf.md,
 // "Gazebo extensions"). Values come from the element text or a `value` attribute; an invalid value
 // is a warning naming file:line that drops that value; nothing in a <gazebo> block fails a load.
 // Fixtures: tests/data/urdf/gazebo (ours, see ORIGIN.md there).
-#include <coulomb/engine/io/UrdfLoader.hpp>
-#include <coulomb/engine/io/UrdfReport.hpp>
+#include <coulomb/io/UrdfReport.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

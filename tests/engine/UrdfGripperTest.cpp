@@ -8,7 +8,7 @@
 //  - mu = 0.1: 2 mu F = 4 N < 4.905 N: it slides down (a > 0; the test can fail);
 //  - opening the fingers (targets 0) releases the box: it falls freely.
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include <gtest/gtest.h>
 

@@ -5,10 +5,10 @@
 // tests/data/urdf/mechanisms/hand_cad.urdf is checked against a Newton-Euler recomputation
 // written here from the file's numbers (no engine code).
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/UrdfLoader.hpp>
-#include <coulomb/engine/io/UrdfMaximal.hpp>
-#include <coulomb/engine/io/UrdfReport.hpp>
+#include <coulomb/io/UrdfReport.hpp>
 #include <coulomb/joints/tree/TreeDynamics.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
+#include <coulomb/urdf/UrdfMaximal.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

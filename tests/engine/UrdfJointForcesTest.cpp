@@ -11,8 +11,8 @@
 //  - bad entries name the joint.
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
-#include <coulomb/engine/io/UrdfLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
 
 #include <gtest/gtest.h>
 

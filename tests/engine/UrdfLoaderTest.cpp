@@ -1,8 +1,8 @@
-// engine/io/UrdfLoader: the corpus pitfalls (tests/data/urdf, see ORIGIN.md) are handled as
+// urdf/UrdfLoader: the corpus pitfalls (tests/data/urdf, see ORIGIN.md) are handled as
 // docs/urdf.md says, malformed files give errors naming the file, line, element and a fix, and
 // mesh paths resolve through the documented search path.
-#include <coulomb/engine/io/UrdfLoader.hpp>
 #include <coulomb/joints/tree/TreeDynamics.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// URDF robots in maximal coordinates (engine/io/UrdfMaximal, docs/urdf.md "Maximal
+// URDF robots in maximal coordinates (urdf/UrdfMaximal, docs/urdf.md "Maximal
 // coordinates"): the same model as free bodies + hinge joints and as a reduced tree.
 //  - from rest at a bent configuration, one small step gives the joint accelerations of the tree
 //    (ABA, Featherstone 2008 Table 7.1), measured as the hinges' relative angular rates / h;
@@ -7,10 +7,10 @@
 //  - a JSON scene entry with "coordinates": "maximal" makes bodies and joints; errors name why.
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
-#include <coulomb/engine/io/UrdfMaximal.hpp>
-#include <coulomb/engine/io/UrdfScene.hpp>
+#include <coulomb/io/SceneLoader.hpp>
+#include <coulomb/io/UrdfScene.hpp>
 #include <coulomb/joints/tree/TreeDynamics.hpp>
+#include <coulomb/urdf/UrdfMaximal.hpp>
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>

@@ -1,13 +1,13 @@
 // Every URDF of the shared corpus that urdfdom accepts, loaded straight from the file by
-// engine/io/UrdfLoader (fixtures copied into tests/data/urdf, see ORIGIN.md there), agrees with
+// urdf/UrdfLoader (fixtures copied into tests/data/urdf, see ORIGIN.md there), agrees with
 // DART 6.12's forward dynamics (reference_dynamics.json): qdd to 1e-9 relative to max|qdd|,
 // M to 1e-10 of its largest entry, h to 1e-10 of max(1, |h|, |tau|); with fixed joints fused and
 // not fused. Unfused, pr2 and anymal_c have links whose tensors break the triangle inequality:
 // the tree keeps them as written (docs/urdf.md, "Inertia policy"), as DART does, so they agree
 // too (before issue 24 they were lifted and these two cases were skipped). DOF order, DOF count
 // and total mass are the reference's.
-#include <coulomb/engine/io/UrdfLoader.hpp>
 #include <coulomb/joints/tree/TreeDynamics.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// URDF robots in scenes (engine/io/UrdfScene): the JSON `urdf` section, tree joint motors
+// URDF robots in scenes (io/UrdfScene): the JSON `urdf` section, tree joint motors
 // (bounded rows in joint space) and mimic couplings (equality rows in joint space).
 //  - kuka_iiwa, fixed base, held by position motors under gravity: joints stay within 1e-3 rad;
 //  - anymal_c, floating base, standing on a floor with its 12 joints held: the base stays within
@@ -8,8 +8,8 @@
 //  - bad entries name the scene, the JSON path and the joint.
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
-#include <coulomb/engine/io/UrdfScene.hpp>
+#include <coulomb/io/SceneLoader.hpp>
+#include <coulomb/io/UrdfScene.hpp>
 
 #include <gtest/gtest.h>
 

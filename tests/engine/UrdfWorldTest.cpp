@@ -1,8 +1,8 @@
-// URDF robots in the World (engine/io/UrdfLoader toArticulationDesc): r2d2 with a floating base
+// URDF robots in the World (urdf/UrdfLoader toArticulationDesc): r2d2 with a floating base
 // (its corpus collision shapes: boxes, cylinders, a sphere, DAE gripper meshes) dropped onto a
 // floor comes to rest on it; kuka_iiwa (STL hulls, fixed base) swings under gravity.
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/UrdfLoader.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 #include "entries/FuzzEntries.hpp"
 
 #include <coulomb/engine/CoulombError.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
-#include <coulomb/engine/io/UrdfLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
+#include <coulomb/urdf/UrdfLoader.hpp>
 
 #include <gtest/gtest.h>
 

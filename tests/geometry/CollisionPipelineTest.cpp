@@ -2,7 +2,7 @@
 // input is reported (never thrown), failures skip one pair only, output is deterministic.
 #include <coulomb/geometry/CollisionPipeline.hpp>
 
-#include <coulomb/geometry/MeshLoader.hpp>
+#include <coulomb/meshes/MeshLoader.hpp>
 
 #include <gtest/gtest.h>
 

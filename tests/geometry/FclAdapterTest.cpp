@@ -1,7 +1,7 @@
 // FclScene: every shape becomes an FCL geometry, queries are oriented a -> b, failures are caught.
 #include <coulomb/geometry/FclAdapter.hpp>
 
-#include <coulomb/geometry/MakeConvexHull.hpp>
+#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <gtest/gtest.h>
 

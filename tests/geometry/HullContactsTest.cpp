@@ -3,7 +3,7 @@
 // face contact (FCL gives none there), tilted faces their own normal, crossing edges one point.
 #include <coulomb/geometry/BoxContacts.hpp>
 #include <coulomb/geometry/HullContacts.hpp>
-#include <coulomb/geometry/MakeConvexHull.hpp>
+#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <gtest/gtest.h>
 
@@ -145,8 +145,7 @@ TEST(HullContacts, MakeConvexHullMergesCoplanarTrianglesIntoFaces) {
   for (const HullFace& face : block.faces) {
     EXPECT_EQ(face.loop.size(), 4u);
     for (const int v : face.loop)
-      EXPECT_NEAR(face.normal.dot(block.vertices[static_cast<std::size_t>(v)]), face.offset,
-                  1e-12);
+      EXPECT_NEAR(face.normal.dot(block.vertices[static_cast<std::size_t>(v)]), face.offset, 1e-12);
   }
   EXPECT_EQ(block.edges.size(), 12u);
 }

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <coulomb/geometry/MakeConvexHull.hpp>
 #include <coulomb/geometry/MassProperties.hpp>
+#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <cmath>
 #include <stdexcept>

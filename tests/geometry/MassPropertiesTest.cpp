@@ -1,7 +1,7 @@
 // Mass properties of every shape against closed forms or an independent integration.
 #include <gtest/gtest.h>
-#include <coulomb/geometry/MakeConvexHull.hpp>
 #include <coulomb/geometry/MassProperties.hpp>
+#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <cmath>
 #include <functional>

@@ -1,5 +1,5 @@
 // Meshes from STL, OBJ and COLLADA fixtures in tests/data/meshes (origins in ORIGIN.md).
-#include <coulomb/geometry/MeshLoader.hpp>
+#include <coulomb/meshes/MeshLoader.hpp>
 
 #include <gtest/gtest.h>
 

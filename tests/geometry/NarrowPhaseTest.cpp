@@ -2,7 +2,7 @@
 // are reported per pair.
 #include <coulomb/geometry/NarrowPhase.hpp>
 
-#include <coulomb/geometry/MakeConvexHull.hpp>
+#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Exact ray tests and support points of every shape: analytic hits, and on random rays the hit
 // checked against an independent inside-test of each solid (just before the hit: outside; just
 // after: inside; no hit: every sample along the ray outside).
-#include <coulomb/geometry/MakeConvexHull.hpp>
 #include <coulomb/geometry/RayCast.hpp>
+#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <gtest/gtest.h>
 

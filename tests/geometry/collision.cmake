@@ -2,5 +2,5 @@
 foreach(test FclAdapterTest MeshLoaderTest BroadPhaseTest PrimitiveContactsTest BoxContactsTest
              ManifoldBuilderTest HullContactsTest NarrowPhaseTest ContactCacheTest CollisionPipelineTest
              RayCastTest SceneQueryTest)
-  coulomb_add_test(${test}.cpp LINKS coulomb::geometry LABELS unit)
+  coulomb_add_test(${test}.cpp LINKS coulomb::meshes LABELS unit)
 endforeach()

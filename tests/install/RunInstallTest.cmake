@@ -11,6 +11,14 @@ run(${CMAKE_COMMAND} --install ${BINARY_DIR} --prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} -S ${APP_SOURCE_DIR} -B ${WORK_DIR}/app -G ${GENERATOR}
     -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/app)
+# Linked with the core libraries alone: no optional component's library on its link line.
+file(GLOB_RECURSE link_rules ${WORK_DIR}/app/*.ninja ${WORK_DIR}/app/*link.txt)
+foreach(rules IN LISTS link_rules)
+  file(READ ${rules} text)
+  if(text MATCHES "assimp|qhull|urdfdom|coulomb_meshes|coulomb_urdf|coulomb_io")
+    message(FATAL_ERROR "command failed: the core consumer links ${CMAKE_MATCH_0} (${rules})")
+  endif()
+endforeach()
 run(${WORK_DIR}/app/consumer)
 if(PYTHON)
   set(check "import coulomb, numpy as np, sys\n\

@@ -8,7 +8,7 @@
 // linked into this test (samples/support/HeapCounter.hpp; operator new and Eigen both end there).
 // Not built under AddressSanitizer, which owns the allocator.
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 #include <coulomb/solvers/SolvePolicy.hpp>
 
 #include "scenes/SceneRegistry.hpp"

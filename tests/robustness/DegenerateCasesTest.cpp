@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/geometry/MeshLoader.hpp>
+#include <coulomb/meshes/MeshLoader.hpp>
 
 #include "RobustnessScenes.hpp"
 #include "scenes/SceneRegistry.hpp"

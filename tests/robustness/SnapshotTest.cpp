@@ -1,11 +1,11 @@
-// Snapshots (engine/io/Snapshot): continuing from a snapshot gives the bit-identical trajectory of
+// Snapshots (io/Snapshot): continuing from a snapshot gives the bit-identical trajectory of
 // the uninterrupted run (issue 13 item 3), on contact stacks, joints and URDF robots; a bad,
 // truncated or mismatched snapshot is a CoulombError naming the file and leaves the World as it
 // was.
 #include <gtest/gtest.h>
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/engine/io/Snapshot.hpp>
+#include <coulomb/io/Snapshot.hpp>
 
 #include "scenes/SceneRegistry.hpp"
 

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <iterator>
 
-#include <coulomb/engine/io/SceneLoader.hpp>
+#include <coulomb/io/SceneLoader.hpp>
 
 #include "Renderer.hpp"
 #include "scenes/SceneRegistry.hpp"
