@@ -4,8 +4,10 @@
 // without error; the final state hash tells whether two builds computed the same trajectory.
 // Ratios between two builds are only meaningful within one run on one machine.
 //
-//   build/bin/StepCost [--warmup N] [--steps N] SCENE...
+//   build/bin/StepCost [--warmup N] [--steps N] [--continuous] SCENE...
 //   e.g. build/bin/StepCost --steps 300 box_incline_A_stick pyramid_10 chain_10
+// --continuous runs every scene a second time with continuous collision on every dynamic body
+// (BodyDesc::continuousCollision; row "SCENE+ccd"): its cost as a ratio within one run.
 #include <coulomb/engine/World.hpp>
 #include <coulomb/io/SceneLoader.hpp>
 
@@ -23,17 +25,28 @@
 int main(int argc, char** argv) {
   using namespace coulomb;
   int warmup = 20, steps = 200;
+  bool continuous = false;
   std::vector<std::string> names;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if ((a == "--warmup" || a == "--steps") && i + 1 < argc)
       (a == "--warmup" ? warmup : steps) = std::atoi(argv[++i]);
+    else if (a == "--continuous")
+      continuous = true;
     else
       names.push_back(a);
   }
   if (names.empty() || steps <= 0 || warmup < 0) {
-    std::fprintf(stderr, "usage: StepCost [--warmup N] [--steps N] SCENE...\n");
+    std::fprintf(stderr, "usage: StepCost [--warmup N] [--steps N] [--continuous] SCENE...\n");
     return 2;
+  }
+  if (continuous) {  // each scene twice, as SCENE and SCENE+ccd
+    std::vector<std::string> both;
+    for (const std::string& name : names) {
+      both.push_back(name);
+      both.push_back(name + "+ccd");
+    }
+    names = both;
   }
   std::printf("%-28s %9s %9s %9s %9s %9s %10s %10s %6s %9s  hash\n", "scene", "first_ms",
               "median_ms", "p99_ms", "max_ms", "mean_ms", "allocs", "bytes", "its", "residual");
@@ -43,7 +56,10 @@ int main(int argc, char** argv) {
     std::optional<engine::io::Scene> loaded;
     std::optional<engine::World> built;
     try {  // an unknown scene or a broken file: its error, then the next scene
-      loaded = scenes::loadBuiltinScene(name);
+      const bool ccd = name.ends_with("+ccd");
+      loaded = scenes::loadBuiltinScene(ccd ? name.substr(0, name.size() - 4) : name);
+      for (engine::BodyDesc& body : loaded->bodies)
+        body.continuousCollision = ccd && body.motionType == geometry::MotionType::Dynamic;
       built.emplace(engine::io::buildWorld(*loaded));
     } catch (const std::exception& error) {
       std::fprintf(stderr, "StepCost: %s\n", error.what());
