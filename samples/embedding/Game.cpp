@@ -1,26 +1,21 @@
 #include "Game.hpp"
 
-#include <coulomb/engine/WorldQueries.hpp>
-
 #include <algorithm>
 #include <cmath>
 
 namespace coulomb::samples {
 namespace {
 
-using geometry::BodyId;
-using geometry::MotionType;
-
 constexpr double kBoxHalf = 0.2;  // tower boxes and the crate [m]
 constexpr int kTowerHeight = 6;
 
-engine::ShapeDesc boxShape(const Eigen::Vector3d& half, double friction = 0.6) {
-  return {geometry::Box{half}, {}, {friction, 0.0}, {}};
+ShapeDesc boxShape(const Eigen::Vector3d& half, double friction = 0.6) {
+  return {Box{half}, {}, {friction, 0.0}, {}};
 }
 
-BodyId addStatic(engine::World& world, const std::string& name, const Eigen::Vector3d& at,
-                 engine::ShapeDesc shape) {
-  engine::BodyDesc desc;
+BodyId addStatic(World& world, const std::string& name, const Eigen::Vector3d& at,
+                 ShapeDesc shape) {
+  BodyDesc desc;
   desc.name = name;
   desc.motionType = MotionType::Static;
   desc.pose.position = at;
@@ -28,9 +23,9 @@ BodyId addStatic(engine::World& world, const std::string& name, const Eigen::Vec
   return world.createBody(desc);
 }
 
-BodyId addDynamic(engine::World& world, const std::string& name, const Eigen::Vector3d& at,
-                  engine::ShapeDesc shape, double density) {
-  engine::BodyDesc desc;
+BodyId addDynamic(World& world, const std::string& name, const Eigen::Vector3d& at, ShapeDesc shape,
+                  double density) {
+  BodyDesc desc;
   desc.name = name;
   desc.pose.position = at;
   desc.density = density;
@@ -40,14 +35,14 @@ BodyId addDynamic(engine::World& world, const std::string& name, const Eigen::Ve
 
 }  // namespace
 
-engine::World makeGameWorld(GameBodies& bodies, const GameSettings& settings) {
-  engine::WorldSettings worldSettings;
+World makeGameWorld(GameBodies& bodies, const GameSettings& settings) {
+  WorldSettings worldSettings;
   worldSettings.timeStep = settings.frameTime;
-  engine::World world(worldSettings);
-  engine::BodyDesc floor;
+  World world(worldSettings);
+  BodyDesc floor;
   floor.name = "floor";
   floor.motionType = MotionType::Static;
-  floor.shapes.push_back({geometry::Plane{}, {}, {0.6, 0.0}, {}});
+  floor.shapes.push_back({Plane{}, {}, {0.6, 0.0}, {}});
   world.createBody(floor);
 
   bodies.tower.clear();
@@ -57,17 +52,16 @@ engine::World makeGameWorld(GameBodies& bodies, const GameSettings& settings) {
                                       boxShape(Eigen::Vector3d::Constant(kBoxHalf)), 300.0));
 
   // Behind the tower: a trigger volume that counts what the shots knock into it.
-  engine::ShapeDesc volume = boxShape({1.0, 2.0, 1.0});
+  ShapeDesc volume = boxShape({1.0, 2.0, 1.0});
   volume.sensor = true;
   bodies.zone = addStatic(world, "zone", {3.0, 0, 1.0}, volume);
 
   // One-way platform, 1.2 m up: it pushes only upwards, so the jumper below passes through it.
   bodies.platform = addStatic(world, "platform", {-3.0, 3.0, 1.2}, boxShape({0.5, 0.5, 0.03}));
-  bodies.jumper =
-      addDynamic(world, "jumper", {-3.0, 3.0, 0.15}, {geometry::Sphere{0.15}, {}, {}, {}}, 500.0);
+  bodies.jumper = addDynamic(world, "jumper", {-3.0, 3.0, 0.15}, {Sphere{0.15}, {}, {}, {}}, 500.0);
   world.setVelocity(bodies.jumper, {0, 0, 6.5}, Eigen::Vector3d::Zero());  // apex ~2.3 m
   const BodyId platform = bodies.platform;
-  world.setPreSolveHook([platform](engine::ContactModification& c) {
+  world.setPreSolveHook([platform](ContactModification& c) {
     if (c.manifold.bodyA != platform && c.manifold.bodyB != platform) return;
     const Eigen::Vector3d up =
         c.manifold.bodyA == platform ? c.manifold.normal : Eigen::Vector3d(-c.manifold.normal);
@@ -75,7 +69,7 @@ engine::World makeGameWorld(GameBodies& bodies, const GameSettings& settings) {
   });
 
   // A kinematic lift with a crate on it.
-  engine::BodyDesc lift;
+  BodyDesc lift;
   lift.name = "lift";
   lift.motionType = MotionType::Kinematic;
   lift.pose.position = {3.0, -3.0, GameDirector::liftHeight(0.0)};
@@ -94,7 +88,7 @@ double GameDirector::liftHeight(double t) {
   return 0.1 + 0.4 * (1.0 - std::cos(1.5 * t));  // peak acceleration 0.9 m/s^2 << mu g
 }
 
-void GameDirector::tally(const engine::World& world) {
+void GameDirector::tally(const World& world) {
   if (world.stepCount() == tallied_) return;  // these events were counted
   tallied_ = world.stepCount();
   auto isSphere = [&](BodyId b) {
@@ -103,16 +97,16 @@ void GameDirector::tally(const engine::World& world) {
   auto isTower = [&](BodyId b) {
     return std::find(bodies_.tower.begin(), bodies_.tower.end(), b) != bodies_.tower.end();
   };
-  for (const engine::ContactEvent& e : world.contactEvents()) {
+  for (const ContactEvent& e : world.contactEvents()) {
     if (e.bodyA == bodies_.zone || e.bodyB == bodies_.zone) ++stats_.zoneContacts;
-    if (e.type != engine::ContactEventType::Begin) continue;
+    if (e.type != ContactEventType::Begin) continue;
     stats_.hardestImpulse = std::max(stats_.hardestImpulse, e.normalImpulse);
     if ((isSphere(e.bodyA) && isTower(e.bodyB)) || (isTower(e.bodyA) && isSphere(e.bodyB))) {
       if (stats_.towerHits == 0) stats_.firstHitSpeed = e.approachSpeed;
       ++stats_.towerHits;
     }
   }
-  for (const engine::SensorEvent& e : world.sensorEvents()) {
+  for (const SensorEvent& e : world.sensorEvents()) {
     if (!e.begin) {
       ++stats_.sensorExits;
       continue;
@@ -124,29 +118,28 @@ void GameDirector::tally(const engine::World& world) {
   }
 }
 
-void GameDirector::beforeStep(engine::World& world) {
+void GameDirector::beforeStep(World& world) {
   tally(world);
   const double h = settings_.frameTime;
   const double t = world.time();
   // A shot when due: heavy spheres at the tower, one box higher each time.
   const auto due = static_cast<int>(std::floor(t / settings_.shotInterval + 1e-9));
   if (stats_.shots < std::min(due, settings_.maxShots)) {
-    engine::BodyDesc shot;
+    BodyDesc shot;
     shot.name = "shot" + std::to_string(stats_.shots);
     shot.pose.position = {-6.0, 0.0, kBoxHalf * (2 * (stats_.shots % kTowerHeight) + 1)};
     shot.linearVelocity = {settings_.shotSpeed, 0.0, 0.0};
     shot.density = 7800.0;  // steel
     shot.continuousCollision = true;
-    shot.shapes.push_back({geometry::Sphere{0.08}, {}, {0.4, 0.0}, {}});
+    shot.shapes.push_back({Sphere{0.08}, {}, {0.4, 0.0}, {}});
     spheres_.push_back(world.createBody(shot));
     ++stats_.shots;
   }
   // The lift: where it must be at the end of this step.
-  world.setKinematicTarget(bodies_.lift,
-                           geometry::Pose::translation({3.0, -3.0, liftHeight(t + h)}), h);
+  world.setKinematicTarget(bodies_.lift, Pose::translation({3.0, -3.0, liftHeight(t + h)}), h);
 }
 
-void GameDirector::run(engine::World& world, int frames) {
+void GameDirector::run(World& world, int frames) {
   for (int k = 0; k < frames; ++k) {
     beforeStep(world);
     world.step(settings_.frameTime);
@@ -154,10 +147,9 @@ void GameDirector::run(engine::World& world, int frames) {
   tally(world);
 }
 
-std::optional<std::string> GameDirector::pick(const engine::World& world,
-                                              const Eigen::Vector3d& origin,
+std::optional<std::string> GameDirector::pick(const World& world, const Eigen::Vector3d& origin,
                                               const Eigen::Vector3d& direction) {
-  engine::WorldQueries queries(world);
+  WorldQueries queries(world);
   const auto hit = queries.castRay(origin, 100.0 * direction.normalized());
   if (!hit) return std::nullopt;
   return world.name(hit->body);

@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
   try {
     const int frames = argc > 1 ? std::stoi(argv[1]) : 300;
     coulomb::samples::GameBodies bodies;
-    coulomb::engine::World world = coulomb::samples::makeGameWorld(bodies);
+    coulomb::World world = coulomb::samples::makeGameWorld(bodies);
     coulomb::samples::GameDirector director(bodies);
     director.run(world, frames);
     const coulomb::samples::GameStats& s = director.stats();

@@ -14,7 +14,7 @@ constexpr double kG = 9.81;
 
 struct Played {
   samples::GameBodies bodies;
-  engine::World world;
+  World world;
   samples::GameDirector director;
   explicit Played(int frames) : world(samples::makeGameWorld(bodies)), director(bodies) {
     director.run(world, frames);
