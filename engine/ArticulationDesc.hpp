@@ -61,6 +61,7 @@ struct ArticulationDesc {
   /// Fraction of a loop-closure, coupling or joint-limit position error removed per step
   /// (Baumgarte).
   double errorReduction = 0.2;
+  std::uint64_t userData = 0;  // the user's value (World::userData(id)); never read
 };
 
 }  // namespace coulomb::engine

@@ -58,7 +58,7 @@ void ArticulationStage::appendEdges(std::uint8_t owner, const RowContext& contex
   };
   for (std::size_t a = 0; a < records_.size(); ++a) {
     Record& r = records_[a];
-    if (r.model->nv() == 0) continue;
+    if (!r.alive || r.model->nv() == 0) continue;
     const auto representative = static_cast<std::int32_t>(r.linkBodies.front().index);
     for (int i = 0; i < r.model->linkCount(); ++i) {
       const joints::tree::TreeJoint& joint = r.model->link(i).joint;

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <variant>
@@ -178,6 +179,7 @@ ArticulationId ArticulationStage::add(Prepared prepared, std::vector<BodyId> pro
     r.constantTau[r.model->vIndex(t.link)] += t.torque;
   r.errorReduction = prepared.desc.errorReduction;
   r.selfCollision = prepared.desc.selfCollision;
+  r.userData = prepared.desc.userData;
   const auto slot = static_cast<std::int32_t>(records_.size());
   for (int i = 0; i < static_cast<int>(r.linkBodies.size()); ++i) {
     const std::uint32_t body = r.linkBodies[i].index;
@@ -189,11 +191,31 @@ ArticulationId ArticulationStage::add(Prepared prepared, std::vector<BodyId> pro
   return {static_cast<std::uint32_t>(slot), records_.back().generation};
 }
 
+std::vector<BodyId> ArticulationStage::remove(ArticulationId id) {
+  Record& r = record(id);
+  for (const BodyId& body : r.linkBodies) linkOfBody_[body.index] = {};
+  std::vector<BodyId> proxies = std::move(r.linkBodies);
+  const std::uint32_t generation = r.generation + 1;
+  r = Record{};  // frees the model and the state
+  r.alive = false;
+  r.generation = generation;
+  return proxies;
+}
+
 bool ArticulationStage::contains(ArticulationId id) const {
-  return id.valid() && id.index < records_.size() && records_[id.index].generation == id.generation;
+  return id.valid() && id.index < records_.size() && records_[id.index].alive &&
+         records_[id.index].generation == id.generation;
 }
 std::size_t ArticulationStage::count() const {
-  return records_.size();
+  return static_cast<std::size_t>(
+      std::count_if(records_.begin(), records_.end(), [](const Record& r) { return r.alive; }));
+}
+ArticulationId ArticulationStage::idAt(std::size_t slot) const {
+  if (slot >= records_.size() || !records_[slot].alive) return {};
+  return {static_cast<std::uint32_t>(slot), records_[slot].generation};
+}
+std::uint64_t ArticulationStage::userData(ArticulationId id) const {
+  return record(id).userData;
 }
 
 ArticulationStage::Record& ArticulationStage::record(ArticulationId id) {
@@ -300,6 +322,7 @@ void ArticulationStage::updateProxies(Record& r, geometry::BodyState& state) con
 void ArticulationStage::predictVelocities(const Eigen::Vector3d& gravity, double h,
                                           geometry::BodyState& state) {
   for (Record& r : records_) {
+    if (!r.alive) continue;
     if (r.model->gravity() != gravity) r.model = std::make_unique<Articulation>(r.links, gravity);
     r.totalTau = r.tau;
     r.totalTau += r.constantTau;
@@ -310,13 +333,14 @@ void ArticulationStage::predictVelocities(const Eigen::Vector3d& gravity, double
 
 void ArticulationStage::integratePositions(double h, geometry::BodyState& state) {
   for (Record& r : records_) {
+    if (!r.alive) continue;
     integrators::integrateConfiguration(*r.model, r.q, r.qd, h);
     updateProxies(r, state);
   }
 }
 
 void ArticulationStage::clearForces() {
-  for (Record& r : records_) r.tau.setZero();
+  for (Record& r : records_) r.tau.setZero();  // empty for a removed one
 }
 
 bool ArticulationStage::keepPair(std::size_t bodyA, std::size_t bodyB) const {
@@ -329,6 +353,7 @@ bool ArticulationStage::keepPair(std::size_t bodyA, std::size_t bodyB) const {
 
 void ArticulationStage::markIslandBodies(std::vector<std::uint8_t>& mask) const {
   for (const Record& r : records_) {
+    if (!r.alive) continue;
     for (const BodyId& body : r.linkBodies) mask[body.index] = 0;
     mask[r.linkBodies.front().index] = r.model->nv() > 0 ? 1 : 0;
   }

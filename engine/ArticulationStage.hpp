@@ -68,7 +68,15 @@ class ArticulationStage final : public RowSource {
   geometry::ArticulationId add(Prepared prepared, std::vector<geometry::BodyId> proxies,
                                geometry::BodyState& state);
 
+  /// Forgets the articulation (its id and every copy become stale) and returns its link proxies,
+  /// no longer links, for the World to remove. Throws CoulombError for a stale id.
+  std::vector<geometry::BodyId> remove(geometry::ArticulationId id);
   [[nodiscard]] bool contains(geometry::ArticulationId id) const;
+  /// Slots ever used (removed ones included) and the live id in a slot (invalid if removed).
+  [[nodiscard]] std::size_t slots() const { return records_.size(); }
+  [[nodiscard]] geometry::ArticulationId idAt(std::size_t slot) const;
+  /// ArticulationDesc::userData; throws for a stale id.
+  [[nodiscard]] std::uint64_t userData(geometry::ArticulationId id) const;
   [[nodiscard]] std::size_t count() const;
   [[nodiscard]] const joints::tree::Articulation& model(geometry::ArticulationId id) const;
   [[nodiscard]] const Eigen::VectorXd& q(geometry::ArticulationId id) const;
@@ -154,6 +162,8 @@ class ArticulationStage final : public RowSource {
     Eigen::VectorXd constantTau;                 // ArticulationDesc::jointTorques, every step
     double errorReduction = 0.2;
     bool selfCollision = false;
+    bool alive = true;  // false once removed: its slot is kept (ids stay unique), never stepped
+    std::uint64_t userData = 0;
     std::uint32_t generation = 0;
     // The step's scratch, kept for its storage: ABA's per-link values, tau + constantTau, qdd,
     // the proxies' kinematics and link velocities.

@@ -21,9 +21,9 @@ std::optional<std::string> QuarantineSettings::validate() const {
 void Quarantine::begin(const geometry::BodyState& state, const ArticulationStage& trees) {
   flags_.resize(state.size(), 0);
   startPoses_ = state.poses;
-  startQ_.resize(trees.count());
-  for (std::size_t k = 0; k < trees.count(); ++k)
-    startQ_[k] = trees.q({static_cast<std::uint32_t>(k), 0});
+  startQ_.resize(trees.slots());
+  for (std::size_t k = 0; k < trees.slots(); ++k)
+    if (const geometry::ArticulationId id = trees.idAt(k); id.valid()) startQ_[k] = trees.q(id);
 }
 
 std::optional<std::string> Quarantine::check(std::size_t i, const geometry::BodyState& state,
@@ -69,8 +69,9 @@ std::vector<QuarantineEvent> Quarantine::guardTrees(ArticulationStage& trees,
                                                     geometry::BodyState& state,
                                                     const QuarantineSettings& limits) const {
   std::vector<QuarantineEvent> events;
-  for (std::size_t k = 0; k < trees.count() && k < startQ_.size(); ++k) {
-    const geometry::ArticulationId id{static_cast<std::uint32_t>(k), 0};
+  for (std::size_t k = 0; k < trees.slots() && k < startQ_.size(); ++k) {
+    const geometry::ArticulationId id = trees.idAt(k);
+    if (!id.valid()) continue;  // removed
     const Eigen::VectorXd& q = trees.q(id);
     const Eigen::VectorXd& qd = trees.qd(id);
     std::string reason;

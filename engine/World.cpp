@@ -182,6 +182,10 @@ geometry::ArticulationId World::createArticulation(const ArticulationDesc& desc)
   return articulations_.add(std::move(prepared), std::move(proxies), state_);
 }
 
+void World::removeArticulation(geometry::ArticulationId id) {
+  for (const BodyId proxy : articulations_.remove(id)) removeBody(proxy);  // no longer links
+}
+
 void World::setArticulationState(geometry::ArticulationId id, const Eigen::VectorXd& q,
                                  const Eigen::VectorXd& qd) {
   articulations_.setState(id, q, qd, state_);

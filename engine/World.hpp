@@ -91,6 +91,13 @@ class World {
   /// (docs/architecture.md, "Articulations"). Throws CoulombError naming the problem; adds nothing.
   /// A link proxy cannot be removed with removeBody; it may be an end of a joint (createJoint).
   geometry::ArticulationId createArticulation(const ArticulationDesc& desc);
+  /// Removes the articulation, its link proxies and every joint attached to them; its id (and
+  /// every copy) becomes stale. Throws CoulombError for a stale id.
+  void removeArticulation(geometry::ArticulationId id);
+  /// ArticulationDesc::userData; throws for a stale id.
+  [[nodiscard]] std::uint64_t userData(geometry::ArticulationId id) const {
+    return articulations_.userData(id);
+  }
   /// Joint state, link poses, link proxies and the model (ArticulationStage.hpp).
   [[nodiscard]] const ArticulationStage& articulations() const { return articulations_; }
   /// Sets q (nq) and qd (nv); throws CoulombError for a stale id or a bad vector.

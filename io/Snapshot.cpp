@@ -206,6 +206,10 @@ struct SnapshotAccess {
     ar.expect(static_cast<std::uint64_t>(w.articulations_.records_.size()),
               "the number of articulations");
     for (const ArticulationStage::Record& r : w.articulations_.records_) {
+      if (ar.version() >= 6) {  // format 5 had no removable articulations
+        ar.expect(r.alive, "an articulation slot's liveness");
+        ar.expect(r.generation, "an articulation slot's generation");
+      }
       ar.expect(static_cast<std::int64_t>(r.q.size()), "an articulation's nq");
       ar.expect(static_cast<std::int64_t>(r.qd.size()), "an articulation's nv");
       ar.expect(static_cast<std::uint64_t>(r.links.size()), "an articulation's link count");
@@ -272,6 +276,7 @@ struct SnapshotAccess {
       io(ar, r.reaction.torque);
     }
     for (ArticulationStage::Record& r : w.articulations_.records_) {
+      if (!r.alive) continue;  // removed: nothing to keep
       io(ar, r.q);
       io(ar, r.qd);
       io(ar, r.tau);

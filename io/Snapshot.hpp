@@ -34,7 +34,8 @@ namespace coulomb::engine::io {
 // 2: collision.speculativeSweep; 3: contact.elasticTurning and the contact points' solved rows;
 // 4: promoteFallbacks and the solver promotions (engine/SolverPromotion); 5: the typed solve
 // policy (WorldSettings::solve, per-body solver choices), assembly and penetration solver; 6: the
-// touching pairs of the contact events (engine/ContactEvents).
+// touching pairs of the contact events (engine/ContactEvents), articulation slots' liveness and
+// generation (removable articulations).
 inline constexpr std::uint32_t kSnapshotVersion = 6;
 /// Version 5 files still restore (their touching pairs are empty: pairs touching when the file
 /// was written get a Begin event in the first step after the restore).

@@ -222,8 +222,8 @@ struct Robot {
 std::vector<Robot> robotsOf(const std::shared_ptr<PyWorld>& w) {
   std::vector<Robot> robots;
   const engine::ArticulationStage& stage = use(*w).articulations();
-  for (std::uint32_t i = 0; robots.size() < stage.count() && i < 1u << 20; ++i)
-    if (ArticulationId id{i, 0}; stage.contains(id)) robots.push_back({w, id});
+  for (std::size_t slot = 0; slot < stage.slots(); ++slot)
+    if (const ArticulationId id = stage.idAt(slot); id.valid()) robots.push_back({w, id});
   return robots;
 }
 
