@@ -20,6 +20,16 @@ foreach(rules IN LISTS link_rules)
   endif()
 endforeach()
 run(${WORK_DIR}/app/consumer)
+# The game-like embedding sample, a project of its own on the public headers and coulomb::core.
+run(${CMAKE_COMMAND} -S ${SAMPLE_SOURCE_DIR} -B ${WORK_DIR}/sample -G ${GENERATOR}
+    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/sample)
+execute_process(COMMAND ${WORK_DIR}/sample/sample_embedding 120 RESULT_VARIABLE status
+                OUTPUT_VARIABLE out)
+message("${out}")
+if(NOT status EQUAL 0 OR NOT out MATCHES "ray pick straight down over the lift: crate")
+  message(FATAL_ERROR "command failed: the installed embedding sample (${status})")
+endif()
 if(PYTHON)
   set(check "import coulomb, numpy as np, sys\n\
 assert coulomb.__file__.startswith(sys.argv[1]), coulomb.__file__\n\
