@@ -1,6 +1,7 @@
-// Contact and sensor events and kinematic targets of coulomb.World (docs/python.md "Contact
-// events, sensors and kinematic bodies"; engine/ContactEvents.hpp): the events of the last step
-// as lists of dicts naming bodies and colliders by integer handles.
+// Contact and sensor events, kinematic targets and colliders on live bodies of coulomb.World
+// (docs/python.md "Contact events, sensors, kinematic bodies, colliders on live bodies";
+// engine/ContactEvents.hpp): the events of the last step as lists of dicts naming bodies and
+// colliders by integer handles.
 #include <pybind11/stl.h>
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include "Bindings.hpp"
 #include "NumpyConversion.hpp"
 #include "PyWorld.hpp"
+#include "SceneInput.hpp"
 
 namespace py = pybind11;
 
@@ -92,7 +94,24 @@ void bindEvents(py::module_& m) {
           py::arg("body"), py::arg("position"), py::kw_only(), py::arg("rotation") = py::none(),
           py::arg("dt") = py::none(),
           "moves a kinematic body so that the next step of dt (default: the world's time step) "
-          "ends at this pose of its reference frame (rotation: quaternion w, x, y, z)");
+          "ends at this pose of its reference frame (rotation: quaternion w, x, y, z)")
+      .def(
+          "add_collider",
+          [](PyWorld& w, std::int64_t body, const py::dict& shape) {
+            const geometry::BodyId id = idOf<geometry::BodyId>(w, body, "body");
+            return handleOf(use(w).addCollider(id, shapeDescFrom(shape, "add_collider")));
+          },
+          py::arg("body"), py::arg("shape"),
+          "adds a shape (JSON scene format, placed in the body's reference frame) to a live body; "
+          "its mass stays as it is; returns the collider's handle")
+      .def(
+          "remove_collider",
+          [](PyWorld& w, std::int64_t collider) {
+            const auto bits = static_cast<std::uint64_t>(collider);
+            use(w).removeCollider({static_cast<std::uint32_t>(bits & 0xffffffffu),
+                                   static_cast<std::uint32_t>(bits >> 32)});
+          },
+          py::arg("collider"), "removes a collider (from add_collider, events or query hits)");
 }
 
 }  // namespace coulomb::python

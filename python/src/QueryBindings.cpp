@@ -34,22 +34,8 @@ geometry::QueryFilter filterOf(std::uint32_t category, std::uint32_t mask) {
   return filter;
 }
 
-// A shape in the JSON scene format (docs/scene-format.md "Shapes"), parsed as the one shape of
-// a static body so that every check of the scene loader applies.
 std::shared_ptr<const geometry::Shape> shapeOf(const py::dict& desc) {
-  py::dict body;
-  body["name"] = "query";
-  body["type"] = "static";
-  py::list shapes;
-  shapes.append(desc);
-  body["shapes"] = shapes;
-  py::list bodies;
-  bodies.append(body);
-  py::dict scene;
-  scene["name"] = "query shape";
-  scene["bodies"] = bodies;
-  const engine::io::Scene parsed = engine::io::parseScene(jsonText(scene), "query shape");
-  return std::make_shared<const geometry::Shape>(parsed.bodies.at(0).shapes.at(0).shape);
+  return std::make_shared<const geometry::Shape>(shapeDescFrom(desc, "query shape").shape);
 }
 
 // RayHit and ShapeHit share their fields: one dict for both.

@@ -49,4 +49,19 @@ engine::io::Scene sceneFrom(const py::handle& scene, const scenes::SceneOverride
   return scenes::resolveScene(py::str(scene).cast<std::string>(), overrides);
 }
 
+engine::ShapeDesc shapeDescFrom(const py::dict& shape, const std::string& what) {
+  py::dict body;
+  body["name"] = what;
+  body["type"] = "static";
+  py::list shapes;
+  shapes.append(shape);
+  body["shapes"] = shapes;
+  py::list bodies;
+  bodies.append(body);
+  py::dict scene;
+  scene["name"] = what;
+  scene["bodies"] = bodies;
+  return engine::io::parseScene(jsonText(scene), what).bodies.at(0).shapes.at(0);
+}
+
 }  // namespace coulomb::python

@@ -16,6 +16,11 @@ namespace coulomb::python {
 /// A Python object (dicts, lists, numbers, strings) as JSON text, for the engine's JSON readers.
 std::string jsonText(const pybind11::handle& object);
 
+/// A shape in the JSON scene format (docs/scene-format.md "Shape": type, keys, position,
+/// orientation, inline material, filter, sensor), parsed as the one shape of a static body so
+/// that every check of the scene loader applies; `what` names it in errors.
+engine::ShapeDesc shapeDescFrom(const pybind11::dict& shape, const std::string& what);
+
 /// As `coulomb run` prints a state hash: 16 hex digits.
 std::string hashText(std::uint64_t hash);
 

@@ -1,5 +1,6 @@
-"""Contact and sensor events and kinematic targets of coulomb.World (docs/python.md "Contact
-events, sensors and kinematic bodies"), against analytic answers."""
+"""Contact and sensor events, kinematic targets and colliders on live bodies of coulomb.World
+(docs/python.md "Contact events, sensors, kinematic bodies, colliders on live bodies"), against
+analytic answers."""
 import math
 
 import numpy as np
@@ -72,3 +73,27 @@ def test_kinematic_target_is_reached():
     np.testing.assert_allclose(world.quaternions()[0], [half, 0, 0, half], atol=1e-12)
     with pytest.raises(coulomb.Error, match="not a kinematic body"):
         world.set_kinematic_target(world.find_body("ball"), [0, 0, 0])
+
+
+def test_colliders_added_to_and_removed_from_a_live_body():
+    world = coulomb.World({
+        "name": "probe",
+        "bodies": [
+            {"name": "floor", "type": "static", "shapes": [{"type": "plane"}]},
+            {"name": "probe", "position": [0, 0, 1.0], "mass": 2.0, "inertia": [0.01] * 3},
+        ],
+    })
+    probe = world.find_body("probe")
+    with pytest.raises(coulomb.Error, match="radius"):
+        world.add_collider(probe, {"type": "sphere", "radius": -0.1})
+    collider = world.add_collider(probe, {"type": "sphere", "radius": 0.1,
+                                          "material": {"friction": 0.3, "restitution": 0.0}})
+    world.step(200)
+    assert world.positions()[1, 2] == pytest.approx(0.1, abs=1e-3)  # rests on its new sphere
+    world.remove_collider(collider)
+    with pytest.raises(coulomb.Error):
+        world.remove_collider(collider)
+    world.step()
+    assert [e["type"] for e in world.contact_events()] == ["end"]
+    world.step(50)
+    assert world.positions()[1, 2] < -0.1  # nothing left to hold it
