@@ -4,6 +4,8 @@
 // the tree (4.8), own tight + fattened AABBs (4.9, 6), every call wrapped (4.12).
 #include <coulomb/geometry/FclAdapter.hpp>
 
+#include <coulomb/geometry/MeshEdges.hpp>
+
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
@@ -132,6 +134,7 @@ struct FclEntry {
   bool hasFat = false;
   bool isPlane = false;
   bool isMesh = false;
+  std::vector<std::uint8_t> activeEdges;  // a mesh's (MeshEdges.hpp)
 
   void build(const std::shared_ptr<const Shape>& newShape, const std::string& who) {
     if (!newShape) throw std::invalid_argument(who + ": has no shape");
@@ -139,6 +142,7 @@ struct FclEntry {
     shape = newShape;
     isPlane = std::holds_alternative<Plane>(*shape);
     isMesh = std::holds_alternative<TriangleMesh>(*shape);
+    if (isMesh) activeEdges = activeEdgeFlags(std::get<TriangleMesh>(*shape));
     try {
       geometry = makeGeometry(*shape, who);
     } catch (const std::invalid_argument&) {
@@ -179,6 +183,7 @@ struct FclScene::Impl {
   // Registered at the next updateTree: into an empty tree as one balanced bulk build, since
   // inserting 10 000 leaves one by one into FCL's tree showed up as its main cost.
   std::vector<fcl::CollisionObjectd*> pending;
+  std::vector<int> bvhStack;  // meshTrianglesNear's traversal, kept between calls
 
   Entry& at(ColliderId id) const {
     auto it = entries.find(id);
@@ -288,6 +293,50 @@ void FclScene::overlappingPairs(std::vector<std::pair<ColliderId, ColliderId>>& 
 Aabb FclScene::worldAabb(ColliderId id) const {
   const fcl::AABBd& box = impl_->at(id).object->getAABB();
   return {box.min_, box.max_};
+}
+
+const std::vector<std::uint8_t>* FclScene::meshActiveEdges(ColliderId id) const {
+  const Impl::Entry& entry = impl_->at(id);
+  return entry.isMesh ? &entry.activeEdges : nullptr;
+}
+
+void FclScene::meshTrianglesNear(ColliderId mesh, const Aabb& box, std::vector<int>& out) const {
+  out.clear();
+  const Impl::Entry& entry = impl_->at(mesh);
+  if (!entry.isMesh) return;
+  const auto& model = static_cast<const fcl::BVHModel<fcl::OBBRSSd>&>(*entry.geometry);
+  // The box in the mesh's frame (a box around the rotated box), tested against each node's
+  // oriented box by its own enclosing box: conservative, exact enough to prune the tree.
+  const fcl::Transform3d& transform = entry.object->getTransform();
+  const Eigen::Matrix3d toLocal = transform.linear().transpose();
+  const Eigen::Vector3d centre = toLocal * (0.5 * (box.min + box.max) - transform.translation());
+  const Eigen::Vector3d half = toLocal.cwiseAbs() * (0.5 * (box.max - box.min));
+  auto overlaps = [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+    return ((c - centre).cwiseAbs() - h - half).maxCoeff() <= 0.0;
+  };
+  std::vector<int>& stack = impl_->bvhStack;
+  stack.clear();
+  if (model.getNumBVs() > 0) stack.push_back(0);
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    const fcl::BVNode<fcl::OBBRSSd>& node = model.getBV(id);
+    const fcl::OBBd& obb = node.bv.obb;
+    if (!overlaps(obb.To, obb.axis.cwiseAbs() * obb.extent)) continue;
+    if (node.isLeaf()) {
+      const fcl::Triangle& t = model.tri_indices[node.primitiveId()];
+      Eigen::Vector3d lo = model.vertices[t[0]], hi = lo;
+      for (int k = 1; k < 3; ++k) {
+        lo = lo.cwiseMin(model.vertices[t[k]]);
+        hi = hi.cwiseMax(model.vertices[t[k]]);
+      }
+      if (overlaps(0.5 * (lo + hi), 0.5 * (hi - lo))) out.push_back(node.primitiveId());
+    } else {
+      stack.push_back(node.rightChild());
+      stack.push_back(node.leftChild());
+    }
+  }
+  std::sort(out.begin(), out.end());
 }
 
 FclCollideResult FclScene::collide(ColliderId a, ColliderId b, int maxContacts,
@@ -487,6 +536,9 @@ FclDistanceResult distancePair(const FclEntry& ea, const FclEntry& eb, ColliderI
     result.distance = raw.min_distance;
     result.pointA = swap ? p2 : p1;
     result.pointB = swap ? p1 : p2;
+    const int t1 = first.isMesh ? raw.b1 : -1, t2 = second.isMesh ? raw.b2 : -1;
+    result.triangleA = swap ? t2 : t1;
+    result.triangleB = swap ? t1 : t2;
     if (!std::isfinite(result.distance) || !result.pointA.allFinite() || !result.pointB.allFinite())
       result.error = "FCL distance returned a non-finite value";
   } catch (const std::exception& e) {

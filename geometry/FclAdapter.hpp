@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
+
 #include <functional>
 #include <memory>
 #include <string>
@@ -40,6 +42,8 @@ struct FclDistanceResult {
   double distance = 0.0;
   Eigen::Vector3d pointA = Eigen::Vector3d::Zero();  // world frame
   Eigen::Vector3d pointB = Eigen::Vector3d::Zero();
+  int triangleA = -1;  // the mesh triangle of the nearest points on a's side, -1 for primitives
+  int triangleB = -1;
   std::string error;
 };
 
@@ -98,6 +102,12 @@ class FclScene {
   /// into `pairs` (cleared first; its capacity is reused, so a steady step does not allocate).
   void overlappingPairs(std::vector<std::pair<ColliderId, ColliderId>>& pairs) const;
   [[nodiscard]] Aabb worldAabb(ColliderId id) const;
+  /// A mesh collider's active-edge flags (MeshEdges.hpp: bit k of triangle t set = its edge k
+  /// is a real crease or a boundary), computed once in upsert; nullptr for other shapes.
+  [[nodiscard]] const std::vector<std::uint8_t>* meshActiveEdges(ColliderId id) const;
+  /// The triangles of a mesh collider whose bounding boxes overlap the world box `box` (from its
+  /// BVH; a superset of the touching ones), ascending, into `out` (cleared first).
+  void meshTrianglesNear(ColliderId mesh, const Aabb& box, std::vector<int>& out) const;
 
   /// fcl::collide with GST_LIBCCD. Meshes go first as FCL requires; the result is re-oriented.
   [[nodiscard]] FclCollideResult collide(ColliderId a, ColliderId b, int maxContacts,

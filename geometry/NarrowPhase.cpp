@@ -1,11 +1,14 @@
 #include <coulomb/geometry/NarrowPhase.hpp>
 
 #include <coulomb/geometry/BoxContacts.hpp>
+#include <coulomb/geometry/FeatureContacts.hpp>
 #include <coulomb/geometry/HullContacts.hpp>
 #include <coulomb/geometry/PrimitiveContacts.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace coulomb::geometry {
 namespace {
@@ -20,6 +23,37 @@ std::span<const Eigen::Vector3d> worldVertices(const std::vector<Eigen::Vector3d
   out.resize(local.size());
   for (std::size_t i = 0; i < local.size(); ++i) out[i] = pose.apply(local[i]);
   return out;
+}
+
+// [m] MPR's tolerance: overlaps below it come back with arbitrary normals, or not at all.
+constexpr double kMprTolerance = 1e-6;
+
+double maxAbsDepth(const PairContact& contact) {
+  double deepest = 0.0;
+  for (const ContactCandidate& c : contact.points) deepest = std::max(deepest, std::abs(c.depth));
+  return deepest;
+}
+
+FeatureScratch& featureScratch(NarrowPhaseScratch& scratch) {
+  if (!scratch.features) scratch.features = std::make_shared<FeatureScratch>();
+  return *scratch.features;
+}
+
+// A mesh contact whose normal leans away from its triangle's face only across internal edges
+// (MeshEdges.hpp) is an artefact of the triangulation: the face normal is the contact normal.
+// `fromMesh` is the contact normal leaving the mesh; `face` the triangle's outward normal.
+bool leansOnlyOverInternalEdges(const std::array<Eigen::Vector3d, 3>& v,
+                                const Eigen::Vector3d& face, const Eigen::Vector3d& fromMesh,
+                                std::uint8_t activeEdges) {
+  if (fromMesh.dot(face) <= 0.0) return false;  // from behind the face: not a surface contact
+  const Eigen::Vector3d lean = fromMesh - fromMesh.dot(face) * face;
+  const double size = lean.norm();
+  if (size < 1e-9) return false;  // already the face normal
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d outward = (v[(k + 1) % 3] - v[k]).cross(face);
+    if (outward.dot(lean) > 1e-6 * size * outward.norm() && ((activeEdges >> k) & 1u)) return false;
+  }
+  return true;
 }
 
 // Closed-form routines, with `first` of a kind <= `second` (normal first -> second).
@@ -122,11 +156,116 @@ bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collid
     error = "mesh-mesh contact is not supported (docs/fcl-notes.md 4.5): use convex pieces";
     return false;
   }
-  return viaFcl(a, b, scene, margin, out, error);
+  if (a.shape->index() == kMesh || b.shape->index() == kMesh)
+    return meshContact(a, poseA, b, poseB, scene, margin, out, error);
+  // FCL's one point and normal made into the manifold of the supporting features; shapes FCL
+  // finds exactly touching (distance 0, no direction) get the face axis that separates most.
+  const bool touching = viaFcl(a, poseA, b, poseB, scene, margin, out, error);
+  if (!touching && (!error.empty() || !out.normal.isZero())) return false;
+  // MPR's normal of an overlap below its tolerance is arbitrary (docs/fcl-notes.md section 3: a
+  // cylinder exactly on a box came back with a normal 90 degrees off): no guess then.
+  const bool reliable = touching && !out.points.empty() && maxAbsDepth(out) >= kMprTolerance;
+  FeatureScratch& features = featureScratch(scratch_);
+  PairContact& refined = features.one;
+  refined.points.clear();
+  const ConvexPart partA{.shape = a.shape.get(), .pose = poseA};
+  const ConvexPart partB{.shape = b.shape.get(), .pose = poseB};
+  const Eigen::Vector3d guess = reliable ? out.normal : Eigen::Vector3d::Zero();
+  if (featureContact(partA, partB, guess, margin, refined, features)) {
+    out.normal = refined.normal;
+    out.points.swap(refined.points);
+    return true;
+  }
+  return touching && reliable;  // an unreliable FCL point is dropped: the next step's is good
 }
 
-bool NarrowPhase::viaFcl(const Collider& a, const Collider& b, const FclScene& scene, double margin,
-                         PairContact& out, std::string& error) const {
+bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collider& b,
+                              const Pose& poseB, const FclScene& scene, double margin,
+                              PairContact& out, std::string& error) const {
+  if (!viaFcl(a, poseA, b, poseB, scene, margin, out, error) && !error.empty()) return false;
+  const bool meshIsA = a.shape->index() == kMesh;
+  const Collider& mesh = meshIsA ? a : b;
+  const Collider& other = meshIsA ? b : a;
+  const Pose& meshPose = meshIsA ? poseA : poseB;
+  const TriangleMesh& shape = std::get<TriangleMesh>(*mesh.shape);
+  FeatureScratch& features = featureScratch(scratch_);
+  Aabb box = scene.worldAabb(other.id);
+  box.min.array() -= margin;
+  box.max.array() += margin;
+  scene.meshTrianglesNear(mesh.id, box, features.triangles);
+  const std::vector<std::uint8_t>* active = scene.meshActiveEdges(mesh.id);
+  const ConvexPart otherPart{.shape = other.shape.get(), .pose = meshIsA ? poseB : poseA};
+  ConvexPart triangle;
+  const bool fclReliable = !out.points.empty() && maxAbsDepth(out) >= kMprTolerance;
+  features.results.clear();
+  features.merged.clear();
+  for (const int t : features.triangles) {
+    const Eigen::Vector3i& indices = shape.triangles[static_cast<std::size_t>(t)];
+    for (int k = 0; k < 3; ++k)
+      triangle.triangle[k] = meshPose.apply(shape.vertices[static_cast<std::size_t>(indices[k])]);
+    triangle.triangleIndex = t;
+    const Eigen::Vector3d face = (triangle.triangle[1] - triangle.triangle[0])
+                                     .cross(triangle.triangle[2] - triangle.triangle[0])
+                                     .normalized();
+    const std::uint8_t flags =
+        active && static_cast<std::size_t>(t) < active->size() ? (*active)[t] : 0x7;
+    // FCL's deepest point on this triangle, if it reported one (`out` holds them, ids from t).
+    const ContactCandidate* reported = nullptr;
+    const auto tag = static_cast<std::uint32_t>((t + 1) << 4);
+    for (const ContactCandidate& c : out.points)
+      if (c.featureId == tag && (!reported || c.depth > reported->depth)) reported = &c;
+    Eigen::Vector3d guess;
+    bool faceOnly = false;
+    if (reported && fclReliable) {
+      guess = out.normal;  // FCL's (merged) normal, from a to b
+      faceOnly =
+          leansOnlyOverInternalEdges(triangle.triangle, face, meshIsA ? guess : -guess, flags);
+    } else {
+      // Not overlapping by FCL: the face normal, for a shape in front of the face only.
+      if (face.dot(otherPart.pose.position - triangle.triangle[0]) <= 0.0) continue;
+      guess = meshIsA ? face : Eigen::Vector3d(-face);
+      faceOnly = true;
+    }
+    PairContact& one = features.one;
+    one.points.clear();
+    const bool touching =
+        meshIsA ? featureContact(triangle, otherPart, guess, margin, one, features, faceOnly)
+                : featureContact(otherPart, triangle, guess, margin, one, features, faceOnly);
+    if (!touching) continue;
+    double deepest = -std::numeric_limits<double>::infinity();
+    const std::size_t begin = features.merged.size();
+    for (ContactCandidate c : one.points) {
+      c.featureId = (static_cast<std::uint32_t>(t + 1) * 2654435761u) ^ c.featureId;
+      deepest = std::max(deepest, c.depth);
+      features.merged.push_back(c);
+    }
+    features.results.push_back({one.normal, begin, features.merged.size(), deepest});
+  }
+  if (features.results.empty()) return !out.points.empty() && fclReliable;  // FCL's points
+  // One normal: the deepest triangle's, averaged with those within ~10 degrees of it.
+  std::size_t deepest = 0;
+  for (std::size_t r = 1; r < features.results.size(); ++r)
+    if (features.results[r].weight > features.results[deepest].weight) deepest = r;
+  const Eigen::Vector3d n0 = features.results[deepest].normal;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  out.points.clear();
+  for (const FeatureScratch::TriangleResult& r : features.results) {
+    if (r.normal.dot(n0) < 0.985) continue;
+    sum += (std::max(0.0, r.weight) + 1e-9) * r.normal;
+    out.points.insert(out.points.end(),
+                      features.merged.begin() + static_cast<std::ptrdiff_t>(r.begin),
+                      features.merged.begin() + static_cast<std::ptrdiff_t>(r.end));
+  }
+  out.normal = sum.normalized();
+  return true;
+}
+
+bool NarrowPhase::viaFcl(const Collider& a, const Pose& poseA, const Collider& b, const Pose& poseB,
+                         const FclScene& scene, double margin, PairContact& out,
+                         std::string& error) const {
+  (void)poseA;
+  (void)poseB;
+  out.normal = Eigen::Vector3d::UnitZ();
   const bool mesh = a.shape->index() == kMesh || b.shape->index() == kMesh;
   FclCollideResult hit = scene.collide(a.id, b.id, mesh ? settings_.maxMeshContacts : 4, injector_);
   if (!hit.error.empty()) {
@@ -159,7 +298,11 @@ bool NarrowPhase::viaFcl(const Collider& a, const Collider& b, const FclScene& s
     return false;
   }
   const Eigen::Vector3d d = gap.pointB - gap.pointA;
-  if (gap.distance > margin || gap.distance <= 0.0 || d.norm() < 1e-12) return false;
+  if (gap.distance > margin) return false;
+  if (gap.distance <= 0.0 || d.norm() < 1e-12) {
+    out.normal = Eigen::Vector3d::Zero();  // touching, with no direction: contactPair decides
+    return false;
+  }
   out.normal = d.normalized();
   out.points.push_back({0.5 * (gap.pointA + gap.pointB), -gap.distance, 0});
   return true;

@@ -9,6 +9,7 @@
 #include <coulomb/geometry/HullContacts.hpp>
 #include <coulomb/geometry/ManifoldBuilder.hpp>
 
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,10 +29,15 @@ struct CollisionFailure {
   std::string message;
 };
 
+struct FeatureScratch;  // FeatureContacts.hpp
+
 /// The closed forms' storage, kept by a NarrowPhase between pairs (one pair at a time).
 struct NarrowPhaseScratch {
   HullScratch hulls;
   std::vector<Eigen::Vector3d> worldVertices;  // a hull's or mesh's against a plane
+  // The feature manifolds' storage, made on first use. shared_ptr: its type stays private to
+  // NarrowPhase.cpp (a copied NarrowPhase shares it; a NarrowPhase is used by one thread).
+  std::shared_ptr<FeatureScratch> features;
 };
 
 struct NarrowPhaseSettings {
@@ -69,8 +75,13 @@ class NarrowPhase {
   [[nodiscard]] const NarrowPhaseSettings& settings() const { return settings_; }
 
  private:
-  bool viaFcl(const Collider& a, const Collider& b, const FclScene& scene, double margin,
-              PairContact& out, std::string& error) const;
+  bool viaFcl(const Collider& a, const Pose& poseA, const Collider& b, const Pose& poseB,
+              const FclScene& scene, double margin, PairContact& out, std::string& error) const;
+  // A mesh against a convex shape: every triangle near the shape, with FCL's normal where FCL
+  // reports the triangle, the face normal on internal edges (MeshEdges.hpp).
+  bool meshContact(const Collider& a, const Pose& poseA, const Collider& b, const Pose& poseB,
+                   const FclScene& scene, double margin, PairContact& out,
+                   std::string& error) const;
 
   NarrowPhaseSettings settings_;
   FclFaultInjector injector_;
