@@ -58,7 +58,7 @@ struct FeatureScratch {
   ConvexHull facelessA, facelessB;  // faces of hulls made without makeConvexHull
   // A mesh pair's (NarrowPhase): the triangles near the shape, one triangle's contact, and the
   // per-triangle results (normal, first point, depth weight) merged into one manifold.
-  std::vector<int> triangles;
+  std::vector<int> triangles, otherTriangles;
   PairContact one;
   struct TriangleResult {
     Eigen::Vector3d normal;

@@ -137,6 +137,110 @@ int closedForm(const Shape& first, const Pose& p1, const Shape& second, const Po
   }
 }
 
+// One normal for a mesh pair's triangle results: the deepest's, averaged (by depth) with those
+// within ~10 degrees of it; the points of those go to `out`.
+void mergeTriangleResults(FeatureScratch& features, PairContact& out) {
+  std::size_t deepest = 0;
+  for (std::size_t r = 1; r < features.results.size(); ++r)
+    if (features.results[r].weight > features.results[deepest].weight) deepest = r;
+  const Eigen::Vector3d n0 = features.results[deepest].normal;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  out.points.clear();
+  for (const FeatureScratch::TriangleResult& r : features.results) {
+    if (r.normal.dot(n0) < 0.985) continue;
+    sum += (std::max(0.0, r.weight) + 1e-9) * r.normal;
+    out.points.insert(out.points.end(),
+                      features.merged.begin() + static_cast<std::ptrdiff_t>(r.begin),
+                      features.merged.begin() + static_cast<std::ptrdiff_t>(r.end));
+  }
+  out.normal = sum.normalized();
+}
+
+// Appends one triangle pair's (or one triangle's) points to the merged list, ids mixed with
+// `key` so that they stay unique across triangles.
+void keepTriangleResult(const PairContact& one, std::uint32_t key, FeatureScratch& features) {
+  double deepest = -std::numeric_limits<double>::infinity();
+  const std::size_t begin = features.merged.size();
+  for (ContactCandidate c : one.points) {
+    c.featureId = key * 2654435761u ^ c.featureId;
+    deepest = std::max(deepest, c.depth);
+    features.merged.push_back(c);
+  }
+  features.results.push_back({one.normal, begin, features.merged.size(), deepest});
+}
+
+// A mesh against a mesh, triangle against triangle (FCL's own mesh-mesh contacts are unusable,
+// docs/fcl-notes.md 4.5): each triangle of the mesh with fewer triangles near the other mesh,
+// against the other's triangles near it; only faces that face each other (within 60 degrees),
+// normal from the pair's face normals (FeatureContacts picks the one that separates most).
+// A mesh has no inside: a triangle pair overlapping deeper than 5% of the smaller mesh's size is
+// a pass-through, not a contact, and is skipped (documented limit: no volume, docs/collision.md).
+bool meshMeshContact(const Collider& a, const Pose& poseA, const Collider& b, const Pose& poseB,
+                     const FclScene& scene, double margin, PairContact& out,
+                     FeatureScratch& features) {
+  const TriangleMesh& meshA = std::get<TriangleMesh>(*a.shape);
+  const TriangleMesh& meshB = std::get<TriangleMesh>(*b.shape);
+  const bool outerIsA = meshA.triangles.size() <= meshB.triangles.size();
+  const Collider& outer = outerIsA ? a : b;
+  const Collider& inner = outerIsA ? b : a;
+  const TriangleMesh& outerMesh = outerIsA ? meshA : meshB;
+  const TriangleMesh& innerMesh = outerIsA ? meshB : meshA;
+  const Pose& outerPose = outerIsA ? poseA : poseB;
+  const Pose& innerPose = outerIsA ? poseB : poseA;
+  auto grown = [margin](Aabb box) {
+    box.min.array() -= margin;
+    box.max.array() += margin;
+    return box;
+  };
+  const Aabb boxA = scene.worldAabb(a.id), boxB = scene.worldAabb(b.id);
+  const double size = std::min((boxA.max - boxA.min).norm(), (boxB.max - boxB.min).norm());
+  const double deepest = 0.05 * size;
+  scene.meshTrianglesNear(outer.id, grown(scene.worldAabb(inner.id)), features.triangles);
+  features.results.clear();
+  features.merged.clear();
+  ConvexPart outerTriangle, innerTriangle;
+  auto place = [](ConvexPart& part, const TriangleMesh& mesh, const Pose& pose, int t) {
+    const Eigen::Vector3i& v = mesh.triangles[static_cast<std::size_t>(t)];
+    for (int k = 0; k < 3; ++k)
+      part.triangle[k] = pose.apply(mesh.vertices[static_cast<std::size_t>(v[k])]);
+    part.triangleIndex = t;
+  };
+  auto faceNormal = [](const ConvexPart& part) {
+    const auto& t = part.triangle;
+    return Eigen::Vector3d((t[1] - t[0]).cross(t[2] - t[0]).normalized());
+  };
+  for (const int to : features.triangles) {
+    place(outerTriangle, outerMesh, outerPose, to);
+    const Eigen::Vector3d outerFace = faceNormal(outerTriangle);
+    Aabb box{outerTriangle.triangle[0], outerTriangle.triangle[0]};
+    for (const Eigen::Vector3d& v : outerTriangle.triangle) {
+      box.min = box.min.cwiseMin(v);
+      box.max = box.max.cwiseMax(v);
+    }
+    scene.meshTrianglesNear(inner.id, grown(box), features.otherTriangles);
+    for (const int ti : features.otherTriangles) {
+      place(innerTriangle, innerMesh, innerPose, ti);
+      const Eigen::Vector3d innerFace = faceNormal(innerTriangle);
+      if (outerFace.dot(innerFace) > -0.5) continue;  // not facing each other
+      const ConvexPart& partA = outerIsA ? outerTriangle : innerTriangle;
+      const ConvexPart& partB = outerIsA ? innerTriangle : outerTriangle;
+      const Eigen::Vector3d guess = -(outerIsA ? innerFace : outerFace);  // b's face, a to b
+      PairContact& one = features.one;
+      one.points.clear();
+      if (!featureContact(partA, partB, guess, margin, one, features)) continue;
+      bool passThrough = false;
+      for (const ContactCandidate& c : one.points) passThrough = passThrough || c.depth > deepest;
+      if (passThrough) continue;
+      const auto ia = static_cast<std::uint32_t>(outerIsA ? to : ti);
+      const auto ib = static_cast<std::uint32_t>(outerIsA ? ti : to);
+      keepTriangleResult(one, (ia + 1) * 40503u ^ (ib + 1), features);
+    }
+  }
+  if (features.results.empty()) return false;
+  mergeTriangleResults(features, out);
+  return true;
+}
+
 }  // namespace
 
 bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collider& b,
@@ -152,10 +256,8 @@ bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collid
     return handled == 1 && !out.points.empty();
   }
   out.points.clear();
-  if (a.shape->index() == kMesh && b.shape->index() == kMesh) {
-    error = "mesh-mesh contact is not supported (docs/fcl-notes.md 4.5): use convex pieces";
-    return false;
-  }
+  if (a.shape->index() == kMesh && b.shape->index() == kMesh)
+    return meshMeshContact(a, poseA, b, poseB, scene, margin, out, featureScratch(scratch_));
   if (a.shape->index() == kMesh || b.shape->index() == kMesh)
     return meshContact(a, poseA, b, poseB, scene, margin, out, error);
   // FCL's one point and normal made into the manifold of the supporting features; shapes FCL
@@ -232,31 +334,10 @@ bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collid
         meshIsA ? featureContact(triangle, otherPart, guess, margin, one, features, faceOnly)
                 : featureContact(otherPart, triangle, guess, margin, one, features, faceOnly);
     if (!touching) continue;
-    double deepest = -std::numeric_limits<double>::infinity();
-    const std::size_t begin = features.merged.size();
-    for (ContactCandidate c : one.points) {
-      c.featureId = (static_cast<std::uint32_t>(t + 1) * 2654435761u) ^ c.featureId;
-      deepest = std::max(deepest, c.depth);
-      features.merged.push_back(c);
-    }
-    features.results.push_back({one.normal, begin, features.merged.size(), deepest});
+    keepTriangleResult(one, static_cast<std::uint32_t>(t + 1), features);
   }
   if (features.results.empty()) return !out.points.empty() && fclReliable;  // FCL's points
-  // One normal: the deepest triangle's, averaged with those within ~10 degrees of it.
-  std::size_t deepest = 0;
-  for (std::size_t r = 1; r < features.results.size(); ++r)
-    if (features.results[r].weight > features.results[deepest].weight) deepest = r;
-  const Eigen::Vector3d n0 = features.results[deepest].normal;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  out.points.clear();
-  for (const FeatureScratch::TriangleResult& r : features.results) {
-    if (r.normal.dot(n0) < 0.985) continue;
-    sum += (std::max(0.0, r.weight) + 1e-9) * r.normal;
-    out.points.insert(out.points.end(),
-                      features.merged.begin() + static_cast<std::ptrdiff_t>(r.begin),
-                      features.merged.begin() + static_cast<std::ptrdiff_t>(r.end));
-  }
-  out.normal = sum.normalized();
+  mergeTriangleResults(features, out);
   return true;
 }
 

@@ -145,7 +145,7 @@ TEST(NarrowPhase, FailingPairIsReportedAndOthersGoOn) {
   EXPECT_EQ(out[0].colliderA.index, 3u);
 }
 
-TEST(NarrowPhase, MeshMeshIsReportedUnsupported) {
+TEST(NarrowPhase, MeshCubesTouchFaceToFaceWithTheFaceNormal) {
   TriangleMesh m;
   for (int i = 0; i < 8; ++i)
     m.vertices.emplace_back((i & 1) ? 0.5 : -0.5, (i & 2) ? 0.5 : -0.5, (i & 4) ? 0.5 : -0.5);
@@ -158,11 +158,31 @@ TEST(NarrowPhase, MeshMeshIsReportedUnsupported) {
   NarrowPhase narrow;
   FclScene scene(0.005);
   const Collider a = collider(1, m), b = collider(2, m);
+  const Pose pa = Pose::identity(), pb = Pose::translation({0.2, 0.1, 0.999});
+  scene.upsert(a.id, a.shape);
+  scene.upsert(b.id, b.shape);
+  scene.setPose(a.id, pa);
+  scene.setPose(b.id, pb);
+  scene.updateTree();
   PairContact out;
   std::string error;
-  EXPECT_FALSE(narrow.contactPair(a, Pose::identity(), b, Pose::translation({0, 0, 0.9}), scene,
-                                  out, error));
-  EXPECT_NE(error.find("mesh-mesh"), std::string::npos);
+  ASSERT_TRUE(narrow.contactPair(a, pa, b, pb, scene, out, error)) << error;
+  EXPECT_TRUE(error.empty());
+  EXPECT_TRUE(out.normal.isApprox(Eigen::Vector3d::UnitZ(), 1e-12)) << out.normal.transpose();
+  ASSERT_GE(out.points.size(), 4u);
+  double deepest = 0.0;
+  for (const auto& p : out.points) {
+    EXPECT_GE(p.position.x(), -0.3 - 1e-9);  // inside the overlap of the two faces
+    EXPECT_LE(p.position.y(), 0.5 + 1e-9);
+    EXPECT_LE(p.depth, 1e-3 + 1e-12);
+    deepest = std::max(deepest, p.depth);
+  }
+  EXPECT_NEAR(deepest, 1e-3, 1e-12);
+  // Apart beyond the margin: nothing.
+  const Pose far = Pose::translation({0.2, 0.1, 1.02});
+  scene.setPose(b.id, far);
+  scene.updateTree();
+  EXPECT_FALSE(narrow.contactPair(a, pa, b, far, scene, out, error));
 }
 
 }  // namespace
