@@ -324,6 +324,9 @@ void jointImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
 
 void ArticulationStage::applyImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
                                       const Eigen::VectorXd& lambda, geometry::BodyState& state) {
+  // Rows touched these trees: they keep the velocity-level step (no Runge-Kutta step over it).
+  for (std::size_t t = 0; t < map.count; ++t)
+    records_[map.trees[t].articulation].constrained = true;
   if (!coversEveryRow(slots, lambda)) return;  // a solve that returned no impulses
   jointImpulses(map, slots, lambda);
   for (std::size_t t = 0; t < map.count; ++t) {

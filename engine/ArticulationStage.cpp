@@ -263,6 +263,7 @@ void ArticulationStage::setState(ArticulationId id, const Eigen::VectorXd& q,
   }
   r.q = q;
   r.qd = qd;
+  r.qdStart = qd;  // set within a step (the guard's reset), the Runge-Kutta step starts here
   updateProxies(r, state);
 }
 
@@ -326,15 +327,24 @@ void ArticulationStage::predictVelocities(const Eigen::Vector3d& gravity, double
     if (r.model->gravity() != gravity) r.model = std::make_unique<Articulation>(r.links, gravity);
     r.totalTau = r.tau;
     r.totalTau += r.constantTau;
+    r.qdStart = r.qd;
+    r.constrained = false;
     integrators::predictArticulationVelocity(*r.model, r.q, r.qd, r.totalTau, h, r.aba, r.qdd);
     updateProxies(r, state);
   }
 }
 
-void ArticulationStage::integratePositions(double h, geometry::BodyState& state) {
+void ArticulationStage::integratePositions(double h, TreeIntegrator integrator,
+                                           geometry::BodyState& state) {
   for (Record& r : records_) {
     if (!r.alive) continue;
-    integrators::integrateConfiguration(*r.model, r.q, r.qd, h);
+    if (integrator == TreeIntegrator::RungeKutta && !r.constrained) {
+      if (!r.integration) r.integration = std::make_shared<integrators::TreeStepScratch>();
+      r.qd = r.qdStart;
+      integrators::rungeKuttaStep(*r.model, r.q, r.qd, r.totalTau, h, r.aba, *r.integration);
+    } else {
+      integrators::integrateConfiguration(*r.model, r.q, r.qd, h);
+    }
     updateProxies(r, state);
   }
 }

@@ -35,6 +35,10 @@
 #include <utility>
 #include <vector>
 
+namespace coulomb::integrators {
+struct TreeStepScratch;  // ArticulationIntegrator.hpp
+}
+
 namespace coulomb::engine {
 
 struct RowBlockSlot;
@@ -134,8 +138,10 @@ class ArticulationStage final : public RowSource {
   /// refreshes the proxy velocities.
   void applyImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
                      const Eigen::VectorXd& lambda, geometry::BodyState& state);
-  /// q <- q (+) h qd on the joint manifolds; proxies follow forward kinematics.
-  void integratePositions(double h, geometry::BodyState& state);
+  /// q <- q (+) h qd on the joint manifolds; proxies follow forward kinematics. With
+  /// TreeIntegrator::RungeKutta a tree that no row touched this step (applyImpulses never saw it)
+  /// is instead integrated by Runge-Kutta from its state at predictVelocities.
+  void integratePositions(double h, TreeIntegrator integrator, geometry::BodyState& state);
   /// Split impulse: q <- q (+) h M^-1 J_t^T p (pseudo-velocities, then discarded), `map` that
   /// of the pseudo problem's rows.
   void applyPseudoImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,
@@ -169,6 +175,11 @@ class ArticulationStage final : public RowSource {
     // the proxies' kinematics and link velocities.
     joints::tree::AbaWorkspace aba;
     Eigen::VectorXd totalTau, qdd;
+    // The step's start (before v*), whether rows touched the tree in its solve, and the
+    // Runge-Kutta storage (made on first use; its type stays in ArticulationIntegrator.hpp).
+    Eigen::VectorXd qdStart;
+    bool constrained = false;
+    std::shared_ptr<integrators::TreeStepScratch> integration;
     joints::tree::TreeKinematics proxyKinematics;
     std::vector<geometry::Vector6d> proxyVelocities;
   };

@@ -17,6 +17,19 @@ namespace coulomb::engine {
 
 /// Every field is saved by snapshots: a new field needs a line in io/Snapshot.cpp
 /// (transferSettings), or a restored World keeps its own value of it.
+/// How articulations move between contact events (docs/tuning.md, "Tree integrators").
+enum class TreeIntegrator {
+  /// Default: a tree that no row touches in a step (no contact, active limit, motor, friction,
+  /// coupling or closure) is integrated over the step by an embedded Runge-Kutta method
+  /// (Dormand-Prince 5(4)) on its joint manifolds, with sub-steps where its local error asks for
+  /// them (a whipping chain); a tree that rows touch takes the semi-implicit Euler step of the
+  /// velocity-level solve. 6 ABA passes per sub-step.
+  RungeKutta,
+  /// Semi-implicit Euler on every step (one ABA pass): qd+ = qd + h qdd, q+ = q (+) h qd+.
+  /// Diverges on a whipping chain (docs/tuning.md).
+  SemiImplicitEuler,
+};
+
 struct WorldSettings {
   /// [m/s^2] Uniform gravitational acceleration. Default: standard gravity along -z (z up, as in
   /// URDF/ROS and the scenes of docs/scene-specifications.md).
@@ -48,6 +61,8 @@ struct WorldSettings {
   /// How joint drift is removed (joints/Stabilization.hpp; docs/tuning.md compares the policies
   /// with figures). A joint's own JointDef::stabilization overrides it.
   joints::Stabilization jointStabilization;
+  /// How articulations move between contact events. Default RungeKutta.
+  TreeIntegrator treeIntegrator = TreeIntegrator::RungeKutta;
 
   /// nullopt if every value is usable, else a message naming the first bad one (solver names
   /// are checked against the World's registry by the World).

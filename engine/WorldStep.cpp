@@ -53,9 +53,10 @@ const StepReport& World::step(double h) {
     applyImpulses(island);  // v+ = v* + M^-1 J^T r, qd+; each source keeps its impulses
   }
   joints_.correctDrift(state_, step_.activeJoints, settings_.jointStabilization, h,
-                       report.joints);                // predicted state
-  integrators::integratePositions(state_, h);         // x+ from v+
-  articulations_.integratePositions(h, state_);       // q+ from qd+; link proxies follow
+                       report.joints);         // predicted state
+  integrators::integratePositions(state_, h);  // x+ from v+
+  articulations_.integratePositions(h, settings_.treeIntegrator,
+                                    state_);          // q+ from qd+; link proxies follow
   collision_.clampContinuous(colliders_, state_, h);  // continuous bodies stop at first touch
   correctPenetrations();                              // split impulse (positions only)
   joints_.finishStep(state_, step_.activeJoints, h, report.joints);   // reactions, breakage

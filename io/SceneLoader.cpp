@@ -370,7 +370,8 @@ Scene parseScene(std::string_view text, const std::string& source,
   }
   const JsonNode root(document, source, "");
   root.allowOnly({"name", "description", "gravity", "time_step", "steps", "materials", "bodies",
-                  "joints", "joint_stabilization", "solver", "sleep", "urdf", "articulations"});
+                  "joints", "joint_stabilization", "solver", "sleep", "urdf", "articulations",
+                  "tree_integrator"});
   Scene scene;
   scene.source = source;
   scene.name = root.string("name", std::filesystem::path(source).stem().string());
@@ -378,6 +379,16 @@ Scene parseScene(std::string_view text, const std::string& source,
   scene.settings.gravity = root.vector3("gravity", scene.settings.gravity);
   if (root.has("time_step")) scene.settings.timeStep = root.child("time_step").positiveNumber();
   if (root.has("steps")) scene.steps = root.child("steps").unsignedInteger();
+  if (root.has("tree_integrator")) {  // docs/scene-format.md, docs/tuning.md "Tree integrators"
+    const JsonNode node = root.child("tree_integrator");
+    const std::string name = node.string();
+    if (name == "runge_kutta")
+      scene.settings.treeIntegrator = TreeIntegrator::RungeKutta;
+    else if (name == "semi_implicit_euler")
+      scene.settings.treeIntegrator = TreeIntegrator::SemiImplicitEuler;
+    else
+      node.fail("must be \"runge_kutta\" or \"semi_implicit_euler\" (got \"" + name + "\")");
+  }
   if (root.has("solver")) parseSolverSection(root.child("solver"), scene.settings);
   if (root.has("sleep")) parseSleepSection(root.child("sleep"), scene.settings.sleep);
 

@@ -107,6 +107,10 @@ void transferSettings(Ar& ar, WorldSettings& s) {
   io(ar, s.jointStabilization.baumgarte.slop);
   io(ar, s.jointStabilization.predictedState.iterations);
   io(ar, s.jointStabilization.predictedState.tolerance);
+  if (ar.version() >= 7)
+    ioEnum(ar, s.treeIntegrator, TreeIntegrator::SemiImplicitEuler);
+  else if constexpr (Ar::kLoading)
+    s.treeIntegrator = TreeIntegrator::SemiImplicitEuler;
 }
 
 template <class Ar>

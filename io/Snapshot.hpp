@@ -35,8 +35,9 @@ namespace coulomb::engine::io {
 // 4: promoteFallbacks and the solver promotions (engine/SolverPromotion); 5: the typed solve
 // policy (WorldSettings::solve, per-body solver choices), assembly and penetration solver; 6: the
 // touching pairs of the contact events (engine/ContactEvents), articulation slots' liveness and
-// generation (removable articulations).
-inline constexpr std::uint32_t kSnapshotVersion = 6;
+// generation (removable articulations); 7: WorldSettings::treeIntegrator (older files restore as
+// SemiImplicitEuler, the integrator they were written with).
+inline constexpr std::uint32_t kSnapshotVersion = 7;
 /// Version 5 files still restore (their touching pairs are empty: pairs touching when the file
 /// was written get a Begin event in the first step after the restore).
 inline constexpr std::uint32_t kOldestReadableVersion = 5;

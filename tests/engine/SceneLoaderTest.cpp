@@ -55,6 +55,16 @@ TEST(SceneLoader, DefaultsAndOrientationForms) {
   EXPECT_EQ(scene.bodies[1].motionType, geometry::MotionType::Kinematic);
 }
 
+TEST(SceneLoader, TreeIntegratorKey) {
+  EXPECT_EQ(parseScene(R"({"bodies": []})", "default.json").settings.treeIntegrator,
+            engine::TreeIntegrator::RungeKutta);
+  EXPECT_EQ(parseScene(R"({"bodies": [], "tree_integrator": "semi_implicit_euler"})", "euler.json")
+                .settings.treeIntegrator,
+            engine::TreeIntegrator::SemiImplicitEuler);
+  EXPECT_CONTAINS(errorOf(R"({"bodies": [], "tree_integrator": "rk4"})"),
+                  "tree_integrator: must be \"runge_kutta\" or \"semi_implicit_euler\"");
+}
+
 TEST(SceneLoader, MeshFilesResolveRelativeToTheScene) {
   const engine::io::Scene scene = engine::io::loadSceneFile(kDataDir + "tetra_mesh.json");
   engine::World world = engine::io::buildWorld(scene);

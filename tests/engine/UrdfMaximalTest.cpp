@@ -75,6 +75,9 @@ struct Pair {
 Pair build(const UrdfModel& model, const Eigen::VectorXd& q) {
   engine::WorldSettings settings;
   settings.solve.options.tolerance = 1e-12;  // joint rows solved tightly: compare dynamics
+  // One step's velocity change is exactly h qdd(q0) with semi-implicit Euler (the Runge-Kutta
+  // default averages qdd over the step): compare the instantaneous accelerations.
+  settings.treeIntegrator = engine::TreeIntegrator::SemiImplicitEuler;
   Pair p{engine::World(settings), engine::World(settings), {}, {}};
   engine::ArticulationDesc desc = engine::io::toArticulationDesc(model, "tree");
   desc.q = q;

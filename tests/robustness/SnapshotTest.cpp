@@ -170,6 +170,26 @@ TEST(Snapshot, SettingsChangedThroughTheApiAreRestored) {
   EXPECT_EQ(original.stateHash(), restored.stateHash());
 }
 
+TEST(Snapshot, TheTreeIntegratorIsRestoredAndATreeContinuesBitForBit) {
+  const engine::io::Scene scene = scenes::loadBuiltinScene("pendulum_reduced");
+  for (const engine::TreeIntegrator integrator :
+       {engine::TreeIntegrator::RungeKutta, engine::TreeIntegrator::SemiImplicitEuler}) {
+    engine::World original = engine::io::buildWorld(scene);
+    engine::WorldSettings settings = original.settings();
+    settings.treeIntegrator = integrator;
+    original.setSettings(settings);
+    for (int k = 0; k < 30; ++k) original.step();
+    engine::World restored = engine::io::buildWorld(scene);  // the scene's default integrator
+    io::restoreSnapshot(restored, io::saveSnapshot(original));
+    EXPECT_EQ(restored.settings().treeIntegrator, integrator);
+    for (int k = 0; k < 50; ++k) {
+      original.step();
+      restored.step();
+    }
+    EXPECT_EQ(original.stateHash(), restored.stateHash());
+  }
+}
+
 namespace {
 /// Restoring `bytes` into a box_stack_10 world throws a CoulombError whose message holds `expected`
 /// and the source name, and leaves the world exactly as it was.
