@@ -11,27 +11,11 @@
 #include <chrono>
 #include <string>
 
+#include "bench/ShapeFixtures.hpp"
+
 namespace {
 
 using namespace coulomb;
-
-engine::ArticulationDesc chain(int links) {
-  engine::ArticulationDesc desc;
-  desc.name = "chain";
-  for (int i = 0; i < links; ++i) {
-    engine::ArticulationLinkDesc link;
-    const std::string index = std::to_string(i);
-    link.name = std::string("link").append(index);
-    link.parent = i - 1;
-    link.joint = joints::tree::TreeJoint::spherical(
-        std::string("j").append(index),
-        geometry::Pose::translation(i == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.1, 0, 0)));
-    link.inertia = geometry::SpatialInertia{
-        0.1, {0.05, 0.0, 0.0}, Eigen::Vector3d(4.857143e-6, 7.557143e-5, 7.557143e-5).asDiagonal()};
-    desc.links.push_back(link);
-  }
-  return desc;
-}
 
 void BM_ReleasedChain(benchmark::State& state) {
   const int links = static_cast<int>(state.range(0));
@@ -44,7 +28,7 @@ void BM_ReleasedChain(benchmark::State& state) {
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     engine::World world(settings);
-    const geometry::ArticulationId id = world.createArticulation(chain(links));
+    const geometry::ArticulationId id = world.createArticulation(samples::releasedChain(links));
     for (int k = 0; k < 1000; ++k) world.step(0.01);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& stage = world.articulations();

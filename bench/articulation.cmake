@@ -10,4 +10,4 @@ coulomb_add_bench(ArticulationContactBench.cpp LINKS coulomb::io)
 target_compile_definitions(ArticulationContactBench PRIVATE
                            COULOMB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 # Tree integrators: ms/step and energy error of the released 10- and 50-link chains (10 s).
-coulomb_add_bench(TreeIntegratorBench.cpp LINKS coulomb::core)
+coulomb_add_bench(TreeIntegratorBench.cpp LINKS coulomb_samples)

@@ -8,45 +8,10 @@
 
 #include <cmath>
 
+#include "bench/ShapeFixtures.hpp"
+
 using namespace coulomb;
-
-namespace {
-
-// A closed slab whose top face (z = 0) is an n x n grid of 2 n^2 triangles, `thickness` deep.
-geometry::TriangleMesh gridSlab(int n, double half, double thickness) {
-  geometry::TriangleMesh mesh;
-  auto index = [n](int layer, int i, int j) { return layer * (n + 1) * (n + 1) + i * (n + 1) + j; };
-  for (int layer = 0; layer < 2; ++layer)
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j)
-        mesh.vertices.emplace_back(-half + 2.0 * half * i / n, -half + 2.0 * half * j / n,
-                                   layer == 0 ? 0.0 : -thickness);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int a = index(0, i, j), b = index(0, i + 1, j), c = index(0, i + 1, j + 1),
-                d = index(0, i, j + 1);
-      mesh.triangles.push_back({a, b, c});
-      mesh.triangles.push_back({a, c, d});
-      const int e = index(1, i, j), f = index(1, i + 1, j), g = index(1, i + 1, j + 1),
-                h = index(1, i, j + 1);
-      mesh.triangles.push_back({e, g, f});
-      mesh.triangles.push_back({e, h, g});
-    }
-  std::vector<std::pair<int, int>> ring;
-  for (int i = 0; i < n; ++i) ring.emplace_back(i, 0);
-  for (int j = 0; j < n; ++j) ring.emplace_back(n, j);
-  for (int i = n; i > 0; --i) ring.emplace_back(i, n);
-  for (int j = n; j > 0; --j) ring.emplace_back(0, j);
-  for (std::size_t k = 0; k < ring.size(); ++k) {
-    const auto [i0, j0] = ring[k];
-    const auto [i1, j1] = ring[(k + 1) % ring.size()];
-    mesh.triangles.push_back({index(1, i0, j0), index(1, i1, j1), index(0, i1, j1)});
-    mesh.triangles.push_back({index(1, i0, j0), index(0, i1, j1), index(0, i0, j0)});
-  }
-  return mesh;
-}
-
-}  // namespace
+using samples::gridSlab;
 
 TEST(MeshMesh, TiltedMeshBodyDroppedOnAMeshTerrainLandsAndRestsFlat) {
   engine::World world;

@@ -6,7 +6,6 @@
 // docs/collision.md lists the pairs.
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/meshes/MakeConvexHull.hpp>
 
 #include <Eigen/Geometry>
 
@@ -17,57 +16,16 @@
 #include <numbers>
 #include <string>
 
+#include "bench/ShapeFixtures.hpp"
+
 using namespace coulomb;
 using geometry::BodyId;
+using samples::boxHull;
+using samples::gridSlab;
 
 namespace {
 
 constexpr double kG = 9.81;
-
-geometry::ConvexHull boxHull(const Eigen::Vector3d& half) {
-  std::vector<Eigen::Vector3d> points;
-  for (int c = 0; c < 8; ++c)
-    points.emplace_back(c & 1 ? half.x() : -half.x(), c & 2 ? half.y() : -half.y(),
-                        c & 4 ? half.z() : -half.z());
-  return geometry::makeConvexHull(points);
-}
-
-// A closed slab whose top face (z = 0) is an n x n grid of 2 n^2 triangles, 0.2 m thick.
-geometry::TriangleMesh gridSlab(int n, double half) {
-  geometry::TriangleMesh mesh;
-  auto index = [n](int layer, int i, int j) { return layer * (n + 1) * (n + 1) + i * (n + 1) + j; };
-  for (int layer = 0; layer < 2; ++layer)
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j)
-        mesh.vertices.emplace_back(-half + 2.0 * half * i / n, -half + 2.0 * half * j / n,
-                                   layer == 0 ? 0.0 : -0.2);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int a = index(0, i, j), b = index(0, i + 1, j), c = index(0, i + 1, j + 1),
-                d = index(0, i, j + 1);
-      mesh.triangles.push_back({a, b, c});  // top: counter-clockwise seen from +z
-      mesh.triangles.push_back({a, c, d});
-      const int e = index(1, i, j), f = index(1, i + 1, j), g = index(1, i + 1, j + 1),
-                h = index(1, i, j + 1);
-      mesh.triangles.push_back({e, g, f});  // bottom: seen from -z
-      mesh.triangles.push_back({e, h, g});
-    }
-  // Sides: the boundary of the top grid joined to the bottom's, walked counter-clockwise.
-  std::vector<std::pair<int, int>> ring;
-  for (int i = 0; i < n; ++i) ring.emplace_back(i, 0);
-  for (int j = 0; j < n; ++j) ring.emplace_back(n, j);
-  for (int i = n; i > 0; --i) ring.emplace_back(i, n);
-  for (int j = n; j > 0; --j) ring.emplace_back(0, j);
-  for (std::size_t k = 0; k < ring.size(); ++k) {
-    const auto [i0, j0] = ring[k];
-    const auto [i1, j1] = ring[(k + 1) % ring.size()];
-    const int t0 = index(0, i0, j0), t1 = index(0, i1, j1), b0 = index(1, i0, j0),
-              b1 = index(1, i1, j1);
-    mesh.triangles.push_back({b0, b1, t1});
-    mesh.triangles.push_back({b0, t1, t0});
-  }
-  return mesh;
-}
 
 struct PairCase {
   std::string name;

@@ -14,27 +14,11 @@
 #include <cstdio>
 #include <string>
 
+#include "bench/ShapeFixtures.hpp"
+
 using namespace coulomb;
 
 namespace {
-
-engine::ArticulationDesc chain(int links) {
-  engine::ArticulationDesc desc;
-  desc.name = "chain";
-  for (int i = 0; i < links; ++i) {
-    engine::ArticulationLinkDesc link;
-    const std::string index = std::to_string(i);  // (GCC 12 -Wrestrict misfires on "x" + s)
-    link.name = std::string("link").append(index);
-    link.parent = i - 1;
-    link.joint = joints::tree::TreeJoint::spherical(
-        std::string("j").append(index),
-        geometry::Pose::translation(i == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.1, 0, 0)));
-    link.inertia = geometry::SpatialInertia{
-        0.1, {0.05, 0.0, 0.0}, Eigen::Vector3d(4.857143e-6, 7.557143e-5, 7.557143e-5).asDiagonal()};
-    desc.links.push_back(link);
-  }
-  return desc;
-}
 
 // Largest |E(t) - E(0)| over the run as a fraction of the released energy (the potential energy
 // between horizontal and hanging straight down: sum m g (0.05 + 0.1 i)), and the final error.
@@ -48,7 +32,7 @@ EnergyError run(int links, double h, double seconds, engine::TreeIntegrator inte
   engine::WorldSettings settings;
   settings.treeIntegrator = integrator;
   engine::World world(settings);
-  const geometry::ArticulationId id = world.createArticulation(chain(links));
+  const geometry::ArticulationId id = world.createArticulation(samples::releasedChain(links));
   const auto& stage = world.articulations();
   auto energy = [&] {
     const joints::tree::Articulation& model = stage.model(id);
@@ -78,8 +62,9 @@ TEST(TreeIntegrator, WhippingChainsKeepTheirEnergyWithRungeKutta) {
   for (const int links : {10, 50}) {
     const EnergyError fine = run(links, 0.002, 10.0, engine::TreeIntegrator::RungeKutta);
     const EnergyError coarse = run(links, 0.01, 10.0, engine::TreeIntegrator::RungeKutta);
-    std::printf("chain_%d Runge-Kutta: dt 0.002 worst %.3g last %.3g; dt 0.01 worst %.3g last %.3g\n",
-                links, fine.worst, fine.last, coarse.worst, coarse.last);
+    std::printf(
+        "chain_%d Runge-Kutta: dt 0.002 worst %.3g last %.3g; dt 0.01 worst %.3g last %.3g\n",
+        links, fine.worst, fine.last, coarse.worst, coarse.last);
     EXPECT_LT(fine.worst, 0.10) << links << " links at dt 0.002";
     EXPECT_LT(coarse.worst, 0.50) << links << " links at dt 0.01";
   }
@@ -96,7 +81,7 @@ TEST(TreeIntegrator, OneSubStepConvergesAtLeastAsTheSquareOfTheStep) {
   // checked here: 0.04 s of the released 3-link chain in steps of h that each take one sub-step,
   // against the same run at h = 1e-4, for h = 0.01, 0.005, 0.0025.
   std::vector<joints::tree::TreeLink> links;
-  for (const engine::ArticulationLinkDesc& link : chain(3).links)
+  for (const engine::ArticulationLinkDesc& link : samples::releasedChain(3).links)
     links.push_back({link.name, link.parent, link.joint, *link.inertia});
   const joints::tree::Articulation model(links);
   auto endState = [&](double h, bool oneSubStep) {

@@ -17,18 +17,13 @@
 #include <memory>
 #include <numbers>
 
+#include "bench/ShapeFixtures.hpp"
+
 namespace coulomb::geometry {
 namespace {
 
 constexpr double kMargin = 0.005;
-
-ConvexHull boxHull(const Eigen::Vector3d& half) {
-  std::vector<Eigen::Vector3d> points;
-  for (int c = 0; c < 8; ++c)
-    points.emplace_back(c & 1 ? half.x() : -half.x(), c & 2 ? half.y() : -half.y(),
-                        c & 4 ? half.z() : -half.z());
-  return makeConvexHull(points);
-}
+using samples::boxHull;
 
 // A prism of `sides` sides (2 * sides vertices), axis z: a hull too large for HullContacts when
 // sides > 32.
