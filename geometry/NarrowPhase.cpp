@@ -334,6 +334,13 @@ bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collid
         meshIsA ? featureContact(triangle, otherPart, guess, margin, one, features, faceOnly)
                 : featureContact(otherPart, triangle, guess, margin, one, features, faceOnly);
     if (!touching) continue;
+    // FCL found no overlap with this triangle: a point deep along its face normal means the face
+    // is not the separating direction (a side face next to a shape resting on the top), not a
+    // contact.
+    if (!(reported && fclReliable) &&
+        std::any_of(one.points.begin(), one.points.end(),
+                    [](const ContactCandidate& c) { return c.depth > 10.0 * kMprTolerance; }))
+      continue;
     keepTriangleResult(one, static_cast<std::uint32_t>(t + 1), features);
   }
   if (features.results.empty()) return !out.points.empty() && fclReliable;  // FCL's points

@@ -68,6 +68,9 @@ std::vector<PairCase> cases() {
        geometry::Pose::translation({0.1, 0.05, 0.1}), 3},
       {"hull_on_200_triangle_mesh", gridSlab(10, 1.0), geometry::Pose::identity(),
        boxHull({0.2, 0.15, 0.1}), geometry::Pose::translation({0.13, 0.07, 0.1}), 3},
+      // Overhanging the slab's edge by 0.1 m: its side triangles are near and must not push.
+      {"hull_overhanging_a_mesh_edge", gridSlab(10, 1.0), geometry::Pose::identity(),
+       boxHull({0.2, 0.15, 0.1}), geometry::Pose::translation({0.9, 0.3, 0.1}), 3},
       {"cylinder_on_mesh", gridSlab(10, 1.0), geometry::Pose::identity(),
        geometry::Cylinder{0.2, 0.3}, geometry::Pose::translation({0.0, 0.0, 0.3}), 3},
       // A 0.4 x 0.4 x 0.2 mesh slab (12 triangles, top at its z = 0) on the 200-triangle slab.
