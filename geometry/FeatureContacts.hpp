@@ -32,7 +32,6 @@ struct ConvexPart {
   Pose pose = Pose::identity();
   std::array<Eigen::Vector3d, 3> triangle{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
                                           Eigen::Vector3d::Zero()};
-  int triangleIndex = -1;
 };
 
 /// A shape's feature that supports it along a direction (world coordinates).

@@ -137,6 +137,18 @@ int closedForm(const Shape& first, const Pose& p1, const Shape& second, const Po
   }
 }
 
+// Triangle t of `mesh` in the world, into `part` (a triangle part: no shape).
+void placeTriangle(const TriangleMesh& mesh, const Pose& pose, int t, ConvexPart& part) {
+  const Eigen::Vector3i& v = mesh.triangles[static_cast<std::size_t>(t)];
+  for (int k = 0; k < 3; ++k)
+    part.triangle[k] = pose.apply(mesh.vertices[static_cast<std::size_t>(v[k])]);
+}
+
+Eigen::Vector3d faceNormal(const ConvexPart& triangle) {
+  const auto& t = triangle.triangle;
+  return (t[1] - t[0]).cross(t[2] - t[0]).normalized();
+}
+
 // One normal for a mesh pair's triangle results: the deepest's, averaged (by depth) with those
 // within ~10 degrees of it; the points of those go to `out`.
 void mergeTriangleResults(FeatureScratch& features, PairContact& out) {
@@ -199,18 +211,8 @@ bool meshMeshContact(const Collider& a, const Pose& poseA, const Collider& b, co
   features.results.clear();
   features.merged.clear();
   ConvexPart outerTriangle, innerTriangle;
-  auto place = [](ConvexPart& part, const TriangleMesh& mesh, const Pose& pose, int t) {
-    const Eigen::Vector3i& v = mesh.triangles[static_cast<std::size_t>(t)];
-    for (int k = 0; k < 3; ++k)
-      part.triangle[k] = pose.apply(mesh.vertices[static_cast<std::size_t>(v[k])]);
-    part.triangleIndex = t;
-  };
-  auto faceNormal = [](const ConvexPart& part) {
-    const auto& t = part.triangle;
-    return Eigen::Vector3d((t[1] - t[0]).cross(t[2] - t[0]).normalized());
-  };
   for (const int to : features.triangles) {
-    place(outerTriangle, outerMesh, outerPose, to);
+    placeTriangle(outerMesh, outerPose, to, outerTriangle);
     const Eigen::Vector3d outerFace = faceNormal(outerTriangle);
     Aabb box{outerTriangle.triangle[0], outerTriangle.triangle[0]};
     for (const Eigen::Vector3d& v : outerTriangle.triangle) {
@@ -219,7 +221,7 @@ bool meshMeshContact(const Collider& a, const Pose& poseA, const Collider& b, co
     }
     scene.meshTrianglesNear(inner.id, grown(box), features.otherTriangles);
     for (const int ti : features.otherTriangles) {
-      place(innerTriangle, innerMesh, innerPose, ti);
+      placeTriangle(innerMesh, innerPose, ti, innerTriangle);
       const Eigen::Vector3d innerFace = faceNormal(innerTriangle);
       if (outerFace.dot(innerFace) > -0.5) continue;  // not facing each other
       const ConvexPart& partA = outerIsA ? outerTriangle : innerTriangle;
@@ -302,23 +304,18 @@ bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collid
   features.results.clear();
   features.merged.clear();
   for (const int t : features.triangles) {
-    const Eigen::Vector3i& indices = shape.triangles[static_cast<std::size_t>(t)];
-    for (int k = 0; k < 3; ++k)
-      triangle.triangle[k] = meshPose.apply(shape.vertices[static_cast<std::size_t>(indices[k])]);
-    triangle.triangleIndex = t;
-    const Eigen::Vector3d face = (triangle.triangle[1] - triangle.triangle[0])
-                                     .cross(triangle.triangle[2] - triangle.triangle[0])
-                                     .normalized();
+    placeTriangle(shape, meshPose, t, triangle);
+    const Eigen::Vector3d face = faceNormal(triangle);
     const std::uint8_t flags =
         active && static_cast<std::size_t>(t) < active->size() ? (*active)[t] : 0x7;
-    // FCL's deepest point on this triangle, if it reported one (`out` holds them, ids from t).
-    const ContactCandidate* reported = nullptr;
+    // Whether FCL reported this triangle (`out` holds FCL's points, their ids made from t).
     const auto tag = static_cast<std::uint32_t>((t + 1) << 4);
-    for (const ContactCandidate& c : out.points)
-      if (c.featureId == tag && (!reported || c.depth > reported->depth)) reported = &c;
+    const bool reported =
+        fclReliable && std::any_of(out.points.begin(), out.points.end(),
+                                   [tag](const ContactCandidate& c) { return c.featureId == tag; });
     Eigen::Vector3d guess;
     bool faceOnly = false;
-    if (reported && fclReliable) {
+    if (reported) {
       guess = out.normal;  // FCL's (merged) normal, from a to b
       faceOnly =
           leansOnlyOverInternalEdges(triangle.triangle, face, meshIsA ? guess : -guess, flags);
@@ -337,7 +334,7 @@ bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collid
     // FCL found no overlap with this triangle: a point deep along its face normal means the face
     // is not the separating direction (a side face next to a shape resting on the top), not a
     // contact.
-    if (!(reported && fclReliable) &&
+    if (!reported &&
         std::any_of(one.points.begin(), one.points.end(),
                     [](const ContactCandidate& c) { return c.depth > 10.0 * kMprTolerance; }))
       continue;
