@@ -64,15 +64,15 @@ struct ContactSettings {
   /// (u_N >= -gap/h) instead of being pushed apart early. Default on: this is what keeps a
   /// resting contact from flickering on and off.
   bool speculativeContacts = true;
-  /// Elastic turning (docs/tuning.md, "Elastic turning"): at a persistent contact (a point of the
-  /// last solve, carried over or handed to the next capsule of a chain) whose normal turned by
-  /// less than kElasticTurningMaxAngle since the last step, the approach that the turning causes
-  /// is reflected (u_N+ >= -u_turn) instead of stopped, so a body circling on a concave curved
+  /// Elastic turning (docs/tuning.md, "Elastic turning"): at a persistent contact that is in
+  /// contact (it touches, or it pushed in the last solve) and whose normal turned by less than
+  /// kElasticTurningMaxAngle since the last step, the approach that the turning causes is
+  /// reflected (u_N+ >= -u_turn) instead of stopped, so a body circling on a concave curved
   /// surface follows the chords of a polygon inscribed in it instead of losing (1/2) m v^2
-  /// sin^2(v h / R) per step (pi m v^3 h / R per turn). Gravity's h g along the normal and every
-  /// new contact stay inelastic. Default off (docs/tuning.md says why); the double loop
-  /// (docs/scene-specifications.md B11) turns it on.
-  bool elasticTurning = false;
+  /// sin^2(v h / R) per step (pi m v^3 h / R per turn). Gravity's h g along the normal, every new
+  /// contact and every speculative point that did not push (an impact) stay inelastic. Default
+  /// on; off gives the plain velocity-level step (inelastic turning, loss proportional to h).
+  bool elasticTurning = true;
   PenetrationSettings penetration;
 };
 

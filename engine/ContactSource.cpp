@@ -124,10 +124,15 @@ void ContactSource::emitRows(std::span<const std::int32_t> items, const RowConte
       // Elastic turning: u_N+ >= -u_turn, the part of the approach that the turning of a
       // persistent contact's normal causes, reflected (it overrides a speculative gap's
       // allowance: the chords of a concave surface end inside it by ~R theta^2 / 8).
-      if (settings.elasticTurning) {
-        const double turn = gap > settings.touchingTolerance && -approach * h <= gap
-                                ? 0.0
-                                : turningApproach(manifold, point, state, approach);
+      // Only a point in contact moves along the surface: one that touches now, or one that
+      // pushed in the last solve and that v* closes within this step. A speculative point that
+      // did not push is an approaching body whose impact follows Newton's law, even if the last
+      // step already saw it (a plank spinning at 3 rad per step toward a box, a box falling
+      // onto another that the impact tips: docs/tuning.md, "Elastic turning").
+      const bool inContact =
+          gap <= settings.touchingTolerance || (point.normalImpulse > 0.0 && -approach * h > gap);
+      if (settings.elasticTurning && inContact) {
+        const double turn = turningApproach(manifold, point, state, approach);
         if (turn < 0.0) bias = std::min(bias, turn);
       }
       bias += baumgarteBias(settings.penetration, point.depth, h);

@@ -150,7 +150,7 @@ def main():
                  "(--mu 0.1, 0.3, 0.6 for the others) rolls through both loops.") + ",",
              '  "time_step": 0.01,', '  "steps": 500,',
              '  "materials": {"scene": {"friction": 1.0, "restitution": 0.0}},',
-             '  "solver": {"name": "ac_newton", "elastic_turning": true},',
+             '  "solver": {"name": "ac_newton"},',
              '  "bodies": [', "    " + json.dumps(ball) + ",",
              '    {"name": "rails", "type": "static", "shapes": [']
     lines += ["      " + json.dumps(s) + ("," if i + 1 < len(shapes) else "")
