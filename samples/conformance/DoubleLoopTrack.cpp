@@ -56,6 +56,10 @@ Eigen::Vector3d DoubleLoopTrack::normal(double phi) {
   return t.cross(b);
 }
 
+double DoubleLoopTrack::keepContactSpeed(double gravity) {
+  return std::sqrt(gravity * kTopPathRadius);
+}
+
 double DoubleLoopTrack::arcLength(double phi) const {
   if (phi >= phiLoopsEnd())
     return table_.back() + (phi - phiLoopsEnd()) * derivative(phiLoopsEnd()).norm();

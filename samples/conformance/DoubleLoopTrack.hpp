@@ -18,6 +18,12 @@ class DoubleLoopTrack {
   static constexpr double kA = 0.4, kB = 1.0, kDrift = 0.4;  // [m]
   static constexpr double kBallHeight = 0.0979795897113271;  // h = sqrt(0.11^2 - 0.05^2) [m]
   static constexpr double kExitLength = 2.0;                 // [m]
+  /// [m] the ball centre's path radius at a loop top: the midline's (B - A)^2 / B less h (the
+  /// drift along y neglected).
+  static constexpr double kTopPathRadius = (kB - kA) * (kB - kA) / kB - kBallHeight;
+  /// [m/s] the least speed over a loop top at which the rails still push (m v^2 / R >= m g):
+  /// slower, the ball leaves them there.
+  [[nodiscard]] static double keepContactSpeed(double gravity);
 
   DoubleLoopTrack();  // tabulates the arc length
 

@@ -87,6 +87,7 @@ DoubleLoopRun runDoubleLoop(double mu, const CaseOptions& options, std::size_t s
   TrackProgress progress(track);
   DoubleLoopRun result;
   result.mu = mu;
+  result.keepContactSpeed = DoubleLoopTrack::keepContactSpeed(-world.settings().gravity.z());
   RunRecorder recorder;
   const std::size_t n = scaledSteps(steps == 0 ? scene.steps : steps, options);
   std::size_t rolling = 0, newtonSum = 0, newtonSolves = 0;
@@ -101,7 +102,9 @@ DoubleLoopRun runDoubleLoop(double mu, const CaseOptions& options, std::size_t s
       break;
     }
     result.pathLength += (p - previous).norm();
+    const int topsBefore = progress.loopsDone();
     progress.update(p);
+    if (progress.loopsDone() > topsBefore) result.topSpeeds.push_back(v.norm());
     if (!progress.onRails() && result.tLeft < 0.0)
       result.tLeft = static_cast<double>(k) * world.settings().timeStep;
     // Stick or slip of every contact that carried an impulse, with the step's (start-of-step)
@@ -156,7 +159,15 @@ std::string describe(const DoubleLoopRun& r) {
                     : "stayed on the rails",
                 r.pathLength, 100.0 * r.rollingShare, 100.0 * r.slidingShare, r.contactSteps,
                 r.newtonMean, r.newtonMax, r.newtonUnreached, r.fAcSquaredMax);
-  return text;
+  std::string line = text;
+  if (!r.topSpeeds.empty()) {
+    line += "; over the loop tops at";
+    for (const double v : r.topSpeeds) line.append(" ").append(std::to_string(v).substr(0, 5));
+    line.append(" m/s (the rails push above ")
+        .append(std::to_string(r.keepContactSpeed).substr(0, 5))
+        .append(" m/s)");
+  }
+  return line;
 }
 
 void addLoopCases(std::vector<ConformanceCase>& cases) {

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace coulomb::conformance {
 
@@ -27,6 +28,10 @@ struct DoubleLoopRun {
   std::size_t contactSteps = 0;  // steps with a ball-rail contact carrying an impulse
   double rollingShare = 0.0;     // steps in which every such contact sticks (|u_T| <= 1e-6 m/s)
   double slidingShare = 0.0;     // the other steps with contact
+  // [m/s] the centre's speed in the step that carried it over each loop top on the rails, and
+  // the least speed at which the rails still push there (DoubleLoopTrack::keepContactSpeed).
+  std::vector<double> topSpeeds;
+  double keepContactSpeed = 0.0;
   // ac_newton on each step's problem, from the step's warm start, counted until
   // ||f_AC||^2 < 1e-20 (AC11 section 5.1.5; f_AC = -Phi of docs/solver-derivations.md (5.1) with
   // the solver's spectral rho per contact (5.14)).

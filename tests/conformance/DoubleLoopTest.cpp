@@ -129,8 +129,8 @@ TEST(DoubleLoop, Mu1CompletesBothLoopsAtDt001WithDefaultSettings) {
   EXPECT_GE(on.sMax, 13.101);
   EXPECT_EQ(on.loopsDone, 2);
   EXPECT_LT(off.sMax, 13.101);
-  const double pathRadiusAtTop = 0.36 - DoubleLoopTrack::kBallHeight;
-  const double keepContactSpeed = std::sqrt(9.81 * pathRadiusAtTop);
+  const double keepContactSpeed = DoubleLoopTrack::keepContactSpeed(9.81);
+  EXPECT_NEAR(keepContactSpeed, 1.603, 5e-4);  // sqrt(9.81 (0.36 - 0.09798))
   ASSERT_EQ(on.topSpeeds.size(), 2u);
   for (const double v : on.topSpeeds) {
     std::printf("speed over a loop top %.3f m/s (keeps contact above %.3f)\n", v, keepContactSpeed);
