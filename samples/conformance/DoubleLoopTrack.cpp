@@ -75,6 +75,13 @@ double TrackProgress::distance(const Eigen::Vector3d& p, double phi) const {
       .norm();
 }
 
+double TrackProgress::update(const Eigen::Vector3d& ballCentre, double speed) {
+  const int topsBefore = loopsDone();
+  const double s = update(ballCentre);
+  if (loopsDone() > topsBefore) topSpeeds_.push_back(speed);
+  return s;
+}
+
 double TrackProgress::update(const Eigen::Vector3d& p) {
   constexpr double kWindow = 0.5,
                    kOffRails = 0.05;  // [rad], [m] (docs/scene-specifications.md B11)

@@ -49,6 +49,10 @@ class TrackProgress {
   explicit TrackProgress(const DoubleLoopTrack& track) : track_(track) {}
   /// Updates with the ball centre; returns the current s [m].
   double update(const Eigen::Vector3d& ballCentre);
+  /// The same, and keeps `speed` [m/s] when this update carries the ball over a loop top.
+  double update(const Eigen::Vector3d& ballCentre, double speed);
+  /// The speeds given with the updates that passed a loop top, in order.
+  [[nodiscard]] const std::vector<double>& topSpeeds() const { return topSpeeds_; }
   [[nodiscard]] double s() const { return s_; }
   [[nodiscard]] double sMax() const { return sMax_; }
   [[nodiscard]] double phi() const { return phi_; }
@@ -63,6 +67,7 @@ class TrackProgress {
   const DoubleLoopTrack& track_;
   double phi_ = 0.0, phiMax_ = 0.0, s_ = 0.0, sMax_ = 0.0;
   bool onRails_ = true, everLeft_ = false;
+  std::vector<double> topSpeeds_;
 };
 
 }  // namespace coulomb::conformance

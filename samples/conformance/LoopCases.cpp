@@ -102,9 +102,7 @@ DoubleLoopRun runDoubleLoop(double mu, const CaseOptions& options, std::size_t s
       break;
     }
     result.pathLength += (p - previous).norm();
-    const int topsBefore = progress.loopsDone();
-    progress.update(p);
-    if (progress.loopsDone() > topsBefore) result.topSpeeds.push_back(v.norm());
+    progress.update(p, v.norm());
     if (!progress.onRails() && result.tLeft < 0.0)
       result.tLeft = static_cast<double>(k) * world.settings().timeStep;
     // Stick or slip of every contact that carried an impulse, with the step's (start-of-step)
@@ -137,6 +135,7 @@ DoubleLoopRun runDoubleLoop(double mu, const CaseOptions& options, std::size_t s
   result.sMax = progress.sMax();
   result.sFinal = progress.s();
   result.loopsDone = progress.loopsDone();
+  result.topSpeeds = progress.topSpeeds();
   result.leftRails = progress.everLeft();
   if (result.contactSteps > 0) {
     result.rollingShare = static_cast<double>(rolling) / static_cast<double>(result.contactSteps);

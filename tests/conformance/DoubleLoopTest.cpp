@@ -97,11 +97,9 @@ Progress progressOf(double mu, bool elasticTurning, std::size_t steps) {
   Progress result;
   for (std::size_t k = 0; k < steps; ++k) {
     world.step(0.01);
-    const int before = progress.loopsDone();
-    progress.update(world.pose(ball).position);
-    if (progress.loopsDone() > before)
-      result.topSpeeds.push_back(world.linearVelocity(ball).norm());
+    progress.update(world.pose(ball).position, world.linearVelocity(ball).norm());
   }
+  result.topSpeeds = progress.topSpeeds();
   result.sMax = progress.sMax();
   result.loopsDone = progress.loopsDone();
   result.everLeft = progress.everLeft();
