@@ -3,6 +3,7 @@
 degenerate contact problems of docs/solvers.md, "Sphere packings". Standard library only.
 
     bench/make_sphere_packing.py 150 1 packing.json   # spheres, seed, output
+    bench/make_sphere_packing.py 10000 1 spheres.json 2.0   # [half width of the box, m: 0.35]
     build/bin/coulomb run packing.json --steps 101 --capture captured --capture-step 100
 """
 import json
@@ -11,12 +12,13 @@ import sys
 
 
 def main() -> int:
-    if len(sys.argv) != 4:
+    if len(sys.argv) not in (4, 5):
         print(__doc__)
         return 2
     count, seed, out = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
     random.seed(seed)
-    radius, half = 0.05, 0.35  # sphere radius, inner half width of the box [m]
+    radius = 0.05  # sphere radius [m]
+    half = float(sys.argv[4]) if len(sys.argv) == 5 else 0.35  # inner half width of the box [m]
     bodies = [{"name": "ground", "type": "static", "shapes": [{"type": "plane", "material": "m"}]}]
     walls = [("wall_x_plus", [half + 0.05, 0, 0.6], [0.05, half + 0.1, 0.6]),
              ("wall_x_minus", [-half - 0.05, 0, 0.6], [0.05, half + 0.1, 0.6]),

@@ -9,3 +9,8 @@ endif()
 if(TARGET coulomb_samples)
   coulomb_add_executable(QueryCost SOURCES QueryCost.cpp LINKS coulomb_samples)
 endif()
+# Threads (docs/embedding.md, "Threads"): ms per step at 1 and N threads, the speed-up, the
+# serial fraction and Amdahl's estimate; the state hash must not change with the count.
+if(TARGET coulomb_samples)
+  coulomb_add_executable(ThreadScaling SOURCES ThreadScaling.cpp LINKS coulomb_samples)
+endif()

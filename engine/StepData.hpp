@@ -39,6 +39,7 @@ struct IslandWork {
   solvers::SolverInstances solvers;
   std::optional<solvers::SolverReport> penetration;  // the split impulse's pseudo-solve
   double penetrationSeconds = 0.0;
+  VelocityProblemNormals penetrationNormals;  // the split impulse's view of W (kept for storage)
 
   [[nodiscard]] const std::vector<std::int32_t>& itemsOf(RowOwner owner) const {
     return items[owner];
@@ -56,7 +57,6 @@ struct StepData {
   // (JointStage::stabilizedInverseInertias); unused when `stabilized` is false.
   bool stabilized = false;
   InverseInertias solveInverseInertias;
-  VelocityProblemNormals penetrationNormals;  // the split impulse's view of an island's W
 
   [[nodiscard]] const InverseInertias* inverseInertias() const {
     return stabilized ? &solveInverseInertias : nullptr;

@@ -36,6 +36,7 @@ void checkSettings(const WorldSettings& settings, const solvers::SolverRegistry&
 World::World(WorldSettings settings)
     : settings_(std::move(settings)), collision_(settings_.collision) {
   checkSettings(settings_, registry_, "world settings: ");
+  executor_.setThreads(settings_.threads);
 }
 
 void World::setSolver(const solvers::SolverChoice& choice) {
@@ -59,6 +60,7 @@ void World::setSettings(const WorldSettings& settings) {
         "contacts) are fixed when the World is built; build a new World to change them");
   const bool wakeAll = settings_.sleep.enabled && !settings.sleep.enabled;
   settings_ = settings;
+  executor_.setThreads(settings_.threads);
   if (!settings_.solve.promotion.enabled) promotion_.resetAll();
   if (wakeAll)
     for (std::size_t i = 0; i < state_.size(); ++i)

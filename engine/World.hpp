@@ -15,6 +15,7 @@
 #include <coulomb/engine/SolverPromotion.hpp>
 #include <coulomb/engine/StepData.hpp>
 #include <coulomb/engine/StepReport.hpp>
+#include <coulomb/engine/StepExecutor.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Collider.hpp>
@@ -122,6 +123,8 @@ class World {
   [[nodiscard]] const geometry::BodyState& state() const { return state_; }
   [[nodiscard]] const std::vector<geometry::Collider>& colliders() const { return colliders_; }
   [[nodiscard]] const WorldSettings& settings() const { return settings_; }
+  /// The threads a step runs on (WorldSettings::threads resolved: 1 without oneTBB).
+  [[nodiscard]] int threads() const { return executor_.threads(); }
   /// Replaces every setting between steps, validated as a whole as the constructor does
   /// (CoulombError naming the first bad value; nothing changes then). Every field may change
   /// except `collision`, fixed when the World is built (its margins size the broad phase and
@@ -194,9 +197,9 @@ class World {
   }
   /// True once the joint's reaction exceeded its break force or torque (it no longer acts).
   [[nodiscard]] bool jointBroken(geometry::JointId id) const { return joints_.broken(id); }
-  /// Called for every island of every step with its assembled problem, before it is solved (the
-  /// island id is that of the step's IslandReport; stepCount() is the index of the step being
-  /// taken). For capturing problems, e.g. `coulomb run --capture`. Empty (the default) = none.
+  /// Called for every island of every step with its assembled problem, once the islands are
+  /// solved, in island order on the thread that called step() (the island id is that of the
+  /// step's IslandReport; stepCount() is the index of the step being taken). For capturing problems, e.g. `coulomb run --capture`. Empty (the default) = none.
   /// Not part of the state: a copy or snapshot does not carry it.
   using ProblemObserver =
       std::function<void(std::int32_t island, const solvers::ContactProblem& problem)>;
@@ -215,7 +218,12 @@ class World {
   void emitRows(IslandWork& island);
   void solveIsland(IslandWork& island);
   void applyImpulses(IslandWork& island);
+  /// After the islands' solves, on the calling thread in island order: the problem observer and
+  /// the warnings of islands no solver could take.
+  void reportIslands();
+  [[nodiscard]] const solvers::SolverChoice& choiceOf(const IslandWork& island) const;
   void correctPenetrations();
+  void correctPenetrations(IslandWork& island);
   void fillIslandReport(const IslandWork& island, IslandReport& report) const;
   /// Adds a StepReport warning when no solver of the island's plan could run (said once per
   /// choice of solvers).
@@ -247,6 +255,7 @@ class World {
   StepData step_;                    // this step's data; kept for its capacity
   StepReport report_;                // the last step's report; kept for its capacity
   std::vector<std::string> warned_;  // keys of the StepReport::warnings already given
+  StepExecutor executor_;            // settings_.threads: the islands' threads
   ProblemObserver problemObserver_;
   ContactEvents events_;
   ContactFilter contactFilter_;

@@ -46,6 +46,9 @@ std::optional<std::string> WorldSettings::validate() const {
     out << *badSleep;
   } else if (auto badGuard = quarantine.validate()) {
     out << *badGuard;
+  } else if (threads < 0 || threads > kMaxThreads) {
+    out << "threads must be 0 (every hardware thread) or 1.." << kMaxThreads << " (got " << threads
+        << ")";
   } else {
     return std::nullopt;
   }

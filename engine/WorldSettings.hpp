@@ -63,6 +63,13 @@ struct WorldSettings {
   joints::Stabilization jointStabilization;
   /// How articulations move between contact events. Default RungeKutta.
   TreeIntegrator treeIntegrator = TreeIntegrator::RungeKutta;
+  /// [threads] The threads a step runs its islands on (docs/embedding.md, "Threads"): 1
+  /// (default) the calling thread only; 0 every hardware thread; N > 1 up to N (at most the
+  /// hardware's). The results are bit-identical whatever the count. Without oneTBB (a build with
+  /// COULOMB_WITH_TBB off) every count runs on the calling thread. Not saved by snapshots: the
+  /// host's choice, not the simulation's state (a restored World keeps its own).
+  int threads = 1;
+  static constexpr int kMaxThreads = 1024;
 
   /// nullopt if every value is usable, else a message naming the first bad one (solver names
   /// are checked against the World's registry by the World).

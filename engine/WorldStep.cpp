@@ -47,18 +47,24 @@ const StepReport& World::step(double h) {
   buildIslands();     // edges of every row source -> islands with per-source item lists
   step_.stabilized =  // heavy joint loads: the velocity solve's inertias (as data)
       joints_.stabilizedInverseInertias(state_, h, step_.solveInverseInertias);
-  for (IslandWork& island : step_.work) {  // v* -> v+
+  const auto islandsStarted = std::chrono::steady_clock::now();
+  executor_.forEach(step_.work.size(), [this](std::size_t k) {  // v* -> v+, island by island
+    IslandWork& island = step_.work[k];  // (each writes its own bodies, rows and points only)
     emitRows(island);       // impacts (propagating law), then joint, contact and tree rows
     solveIsland(island);    // W = J M^-1 J^T, q = J v*; the policy's plan; the outcome
     applyImpulses(island);  // v+ = v* + M^-1 J^T r, qd+; each source keeps its impulses
-  }
+  });
+  report.islandStageSeconds = secondsSince(islandsStarted);
+  reportIslands();  // the problem observer, unsolved islands' warnings (in island order)
   joints_.correctDrift(state_, step_.activeJoints, settings_.jointStabilization, h,
                        report.joints);         // predicted state
   integrators::integratePositions(state_, h);  // x+ from v+
   articulations_.integratePositions(h, settings_.treeIntegrator,
                                     state_);          // q+ from qd+; link proxies follow
   collision_.clampContinuous(colliders_, state_, h);  // continuous bodies stop at first touch
-  correctPenetrations();                              // split impulse (positions only)
+  const auto penetrationStarted = std::chrono::steady_clock::now();
+  correctPenetrations();  // split impulse (positions only)
+  report.penetrationStageSeconds = secondsSince(penetrationStarted);
   joints_.finishStep(state_, step_.activeJoints, h, report.joints);   // reactions, breakage
   sleep_.update(step_.islands, state_, settings_.sleep, h);           // slow islands fall asleep
   events_.update(collision_.cache().manifolds(), colliders_, state_,  // begin / persist / end
@@ -161,19 +167,28 @@ void World::solveIsland(IslandWork& island) {
   ProblemAssembler(settings_.assembly)
       .assemble(island.rows, state_, &articulations_, step_.inverseInertias(), island.assembled);
   const solvers::ContactProblem& problem = island.assembled.problem;
-  if (problemObserver_) problemObserver_(island.island.id, problem);
-  // The island's choice: the override of its smallest body that has one, else the world's.
-  const std::optional<solvers::SolverChoice>& own = solverOverrides_[island.island.bodies.front()];
-  const solvers::SolverChoice& choice = own ? *own : settings_.solve.choice;
+  const solvers::SolverChoice& choice = choiceOf(island);
   island.automaticPlan = choice.isAutomatic();
   solvers::SolverChooser(settings_.solve.chooser)
       .choose(problem, {island.assembled.degreesOfFreedom}, choice, settings_.solve.options,
               island.plan);
   if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
   solvers::solveWithFallback(problem, island.plan, registry_, island.solvers, island.outcome);
-  warnIfUnsolved(island, choice);
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);
+}
+
+const solvers::SolverChoice& World::choiceOf(const IslandWork& island) const {
+  // The override of the island's smallest body that has one, else the world's.
+  const std::optional<solvers::SolverChoice>& own = solverOverrides_[island.island.bodies.front()];
+  return own ? *own : settings_.solve.choice;
+}
+
+void World::reportIslands() {
+  for (const IslandWork& island : step_.work) {
+    if (problemObserver_) problemObserver_(island.island.id, island.assembled.problem);
+    warnIfUnsolved(island, choiceOf(island));
+  }
 }
 
 void World::warnIfUnsolved(const IslandWork& island, const solvers::SolverChoice& choice) {
@@ -206,23 +221,26 @@ void World::applyImpulses(IslandWork& island) {
 }
 
 void World::correctPenetrations() {
-  for (IslandWork& island : step_.work) {
-    const solvers::ContactSolver* solver =
-        island.solvers.get(settings_.contact.penetration.solver, registry_);
-    if (solver == nullptr) break;  // validated at construction; a registry only grows
-    const auto started = std::chrono::steady_clock::now();
-    const joints::BlockRange contacts = island.blocks[kContactRows];
-    VelocityProblemNormals& normals = step_.penetrationNormals;  // kept for its storage
-    normals.W = island.assembled.problem.W;
-    normals.normalRows.clear();
-    for (std::size_t k = contacts.first; k < contacts.end(); ++k)
-      normals.normalRows.push_back(island.assembled.slots[k].offset);
-    island.penetration = correctPenetration(
-        island.rows.in(contacts), collision_.cache().manifolds(), settings_.contact.penetration,
-        step_.h, state_, *solver, &articulations_, &normals);
-    normals.W = solvers::DelassusOperator();  // W's storage is the assembler's to reuse
-    island.penetrationSeconds = secondsSince(started);
-  }
+  executor_.forEach(step_.work.size(),
+                    [this](std::size_t k) { correctPenetrations(step_.work[k]); });
+}
+
+void World::correctPenetrations(IslandWork& island) {
+  const solvers::ContactSolver* solver =
+      island.solvers.get(settings_.contact.penetration.solver, registry_);
+  if (solver == nullptr) return;  // validated at construction; a registry only grows
+  const auto started = std::chrono::steady_clock::now();
+  const joints::BlockRange contacts = island.blocks[kContactRows];
+  VelocityProblemNormals& normals = island.penetrationNormals;  // kept for its storage
+  normals.W = island.assembled.problem.W;
+  normals.normalRows.clear();
+  for (std::size_t k = contacts.first; k < contacts.end(); ++k)
+    normals.normalRows.push_back(island.assembled.slots[k].offset);
+  island.penetration = correctPenetration(
+      island.rows.in(contacts), collision_.cache().manifolds(), settings_.contact.penetration,
+      step_.h, state_, *solver, &articulations_, &normals);
+  normals.W = solvers::DelassusOperator();  // W's storage is the assembler's to reuse
+  island.penetrationSeconds = secondsSince(started);
 }
 
 // The vectors keep their storage from the last step (islands are resized by the step and every
@@ -246,6 +264,7 @@ void World::resetReport(double h) {
   r.quarantined = std::move(quarantined);
   r.stepIndex = stepCount_;
   r.timeStep = h;
+  r.threads = executor_.threads();
 }
 
 void World::fillIslandReport(const IslandWork& island, IslandReport& report) const {

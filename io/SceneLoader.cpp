@@ -371,7 +371,7 @@ Scene parseScene(std::string_view text, const std::string& source,
   const JsonNode root(document, source, "");
   root.allowOnly({"name", "description", "gravity", "time_step", "steps", "materials", "bodies",
                   "joints", "joint_stabilization", "solver", "sleep", "urdf", "articulations",
-                  "tree_integrator"});
+                  "tree_integrator", "threads"});
   Scene scene;
   scene.source = source;
   scene.name = root.string("name", std::filesystem::path(source).stem().string());
@@ -388,6 +388,20 @@ Scene parseScene(std::string_view text, const std::string& source,
       scene.settings.treeIntegrator = TreeIntegrator::SemiImplicitEuler;
     else
       node.fail("must be \"runge_kutta\" or \"semi_implicit_euler\" (got \"" + name + "\")");
+  }
+  if (root.has("threads")) {  // docs/scene-format.md, docs/embedding.md "Threads"
+    const JsonNode node = root.child("threads");
+    if (node.raw().is_string()) {
+      if (node.string() != "hardware")
+        node.fail("must be a thread count >= 1 or \"hardware\" (got \"" + node.string() + "\")");
+      scene.settings.threads = 0;
+    } else {
+      const std::uint64_t count = node.unsignedInteger();
+      if (count < 1 || count > static_cast<std::uint64_t>(WorldSettings::kMaxThreads))
+        node.fail("must be a thread count in 1.." + std::to_string(WorldSettings::kMaxThreads) +
+                  " or \"hardware\" (got " + std::to_string(count) + ")");
+      scene.settings.threads = static_cast<int>(count);
+    }
   }
   if (root.has("solver")) parseSolverSection(root.child("solver"), scene.settings);
   if (root.has("sleep")) parseSleepSection(root.child("sleep"), scene.settings.sleep);

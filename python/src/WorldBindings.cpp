@@ -78,7 +78,7 @@ Eigen::Vector3d vector3(const py::handle& v, const char* name) {
 std::shared_ptr<PyWorld> makeWorld(const py::object& scene, std::optional<double> dt,
                                    std::optional<std::string> solver, std::optional<double> tol,
                                    std::optional<int> maxIterations, std::optional<double> mu,
-                                   const py::object& gravity) {
+                                   const py::object& gravity, const py::object& threads) {
   const scenes::SceneOverrides overrides =
       overridesFrom(std::nullopt, dt, std::move(solver), tol, maxIterations, mu);
   engine::io::Scene loaded;
@@ -89,6 +89,11 @@ std::shared_ptr<PyWorld> makeWorld(const py::object& scene, std::optional<double
     scenes::applyOverrides(loaded, overrides);
   }
   if (!gravity.is_none()) loaded.settings.gravity = vector3(gravity, "gravity");
+  if (!threads.is_none())  // a count or "hardware" (docs/python.md)
+    loaded.settings.threads = scenes::parseThreads(
+        py::isinstance<py::str>(threads) ? threads.cast<std::string>()
+                                         : std::to_string(threads.cast<long long>()),
+        "threads");
   return std::make_shared<PyWorld>(engine::io::buildWorld(loaded));
 }
 
@@ -307,7 +312,7 @@ void bindWorldClass(py::module_& m) {
       .def(py::init(&makeWorld), py::arg("scene") = py::none(), py::kw_only(),
            py::arg("dt") = py::none(), py::arg("solver") = py::none(), py::arg("tol") = py::none(),
            py::arg("max_iterations") = py::none(), py::arg("mu") = py::none(),
-           py::arg("gravity") = py::none())
+           py::arg("gravity") = py::none(), py::arg("threads") = py::none())
       .def(
           "step",
           [](PyWorld& w, int n) {
@@ -332,6 +337,9 @@ void bindWorldClass(py::module_& m) {
           "the last step's report as a dict (islands with solver, status, iterations, residual)")
       .def_property_readonly("time", [](const PyWorld& w) { return use(w).time(); })
       .def_property_readonly("step_count", [](const PyWorld& w) { return use(w).stepCount(); })
+      .def_property_readonly(
+          "threads", [](const PyWorld& w) { return use(w).threads(); },
+          "the threads each step runs on (1 without oneTBB)")
       .def_property_readonly("time_step",
                              [](const PyWorld& w) { return use(w).settings().timeStep; })
       .def_property_readonly("state_hash", [](const PyWorld& w) { return use(w).stateHash(); })

@@ -57,6 +57,9 @@ void registerCompareCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--steps", options->overrides.steps, "Number of steps (default: the scene's)")
       ->check(CLI::PositiveNumber);
+  command->add_option("--threads", options->overrides.threads,
+                         "Threads of each step: a count or hardware (default: the scene's, 1); "
+                         "results are bit-identical whatever the count (docs/embedding.md)");
   command->add_option("--dt", options->overrides.timeStep, "Time step [s] (default: the scene's)");
   command->add_option("--max-iter", options->overrides.maxIterations,
                       "Iteration cap per island solve (0 = each solver's default)");

@@ -169,6 +169,9 @@ void registerSceneCommands(CLI::App& app) {
                        "A .urdf robot's joints are not held by motors (default: held)");
   runCommand->add_flag("--maximal", options->overrides.urdfMaximal,
                        "A .urdf robot as free bodies and maximal joints (needs --limp)");
+  runCommand->add_option("--threads", options->overrides.threads,
+                         "Threads of each step: a count or hardware (default: the scene's, 1); "
+                         "results are bit-identical whatever the count (docs/embedding.md)");
   runCommand->add_option("--solver", options->overrides.solver,
                          "Contact solver of every island: auto, a name of `coulomb solvers`, "
                          "NAME! (no fallback) or a chain a,b,c (default: the scene's)");

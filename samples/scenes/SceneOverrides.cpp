@@ -3,6 +3,7 @@
 #include <coulomb/engine/CoulombError.hpp>
 #include <coulomb/io/UrdfScene.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "SceneRegistry.hpp"
@@ -11,7 +12,20 @@ namespace coulomb::scenes {
 
 using engine::CoulombError;
 
+int parseThreads(const std::string& text, const std::string& who) {
+  if (text == "hardware") return 0;
+  const bool digits = !text.empty() && text.size() <= 6 &&
+                      std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const int count = digits ? std::stoi(text) : -1;
+  if (count < 1 || count > engine::WorldSettings::kMaxThreads)
+    throw CoulombError(who + ": must be a thread count in 1.." +
+                       std::to_string(engine::WorldSettings::kMaxThreads) +
+                       " or \"hardware\" (got \"" + text + "\")");
+  return count;
+}
+
 void applyOverrides(engine::io::Scene& scene, const SceneOverrides& overrides) {
+  if (overrides.threads) scene.settings.threads = parseThreads(*overrides.threads, "threads override");
   if (overrides.timeStep) {
     if (!std::isfinite(*overrides.timeStep) || *overrides.timeStep <= 0.0)
       throw CoulombError("time step override: must be finite and > 0 s");

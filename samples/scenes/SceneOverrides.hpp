@@ -20,7 +20,12 @@ struct SceneOverrides {
   bool urdfFloating = false;         // a .urdf scene: floating base (default fixed)
   bool urdfLimp = false;             // a .urdf scene: no motors holding the joints
   bool urdfMaximal = false;          // a .urdf scene: free bodies and maximal joints
+  std::optional<std::string> threads;  // "hardware" or a count >= 1 (WorldSettings::threads)
 };
+
+/// WorldSettings::threads from "hardware" (0: every hardware thread) or a count in
+/// 1..WorldSettings::kMaxThreads; throws CoulombError naming `who` otherwise.
+int parseThreads(const std::string& text, const std::string& who);
 
 /// Applies the overrides. A solver override replaces the world's solver and clears every body's
 /// own `solver`, so that every island uses it. Throws CoulombError naming the override and the

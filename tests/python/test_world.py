@@ -211,3 +211,19 @@ def test_problems_captured_from_a_live_world():
     assert world.step_count == 11
     world.step(1)  # the observer is gone: stepping captures nothing more
     assert coulomb.solve(captured[0].problem, "ac_newton").converged
+
+
+def test_threads_give_the_same_state_as_one_thread():
+    """World(threads=...) (docs/embedding.md "Threads"): islands run on several threads, each
+    writing only its own bodies, so the state hash is the same for every count."""
+    hashes = []
+    for threads in (None, 2, "hardware"):
+        world = coulomb.World("rope_bridge", threads=threads)
+        assert world.threads >= 1
+        world.step(30)
+        hashes.append(world.state_hash)
+    assert hashes[0] == hashes[1] == hashes[2]
+    with pytest.raises(coulomb.Error, match="threads"):
+        coulomb.World("rope_bridge", threads="all")
+    with pytest.raises(coulomb.Error, match="threads"):
+        coulomb.World("rope_bridge", threads=0)
