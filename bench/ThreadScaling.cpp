@@ -51,10 +51,9 @@ Run run(const coulomb::engine::io::Scene& scene, int threads, int warmup, int st
   for (int n = 0; n < steps; ++n) {
     const engine::StepReport& report = world.step();
     ms.push_back(1e3 * report.seconds);
-    share.push_back(report.seconds > 0.0 ? (report.islandStageSeconds +
-                                            report.penetrationStageSeconds) /
-                                               report.seconds
-                                         : 0.0);
+    const double parallel =
+        report.islandStageSeconds + report.penetrationStageSeconds + report.treeStageSeconds;
+    share.push_back(report.seconds > 0.0 ? parallel / report.seconds : 0.0);
     double total = 0.0, biggest = 0.0;
     for (const engine::IslandReport& island : report.islands) {
       const double s = island.solve.seconds + island.penetrationSeconds;
@@ -74,7 +73,9 @@ Run run(const coulomb::engine::io::Scene& scene, int threads, int warmup, int st
   return r;
 }
 
-double amdahl(double p, double n) { return 1.0 / ((1.0 - p) + p / n); }
+double amdahl(double p, double n) {
+  return 1.0 / ((1.0 - p) + p / n);
+}
 double islandBound(double p, double largest, double n) {
   return 1.0 / ((1.0 - p) + p * std::max(largest, 1.0 / n));
 }
@@ -93,7 +94,8 @@ int main(int argc, char** argv) {
     } else if (a == "--threads" && i + 1 < argc) {
       counts.clear();
       std::stringstream list(argv[++i]);
-      for (std::string item; std::getline(list, item, ',');) counts.push_back(std::atoi(item.c_str()));
+      for (std::string item; std::getline(list, item, ',');)
+        counts.push_back(std::atoi(item.c_str()));
     } else {
       names.push_back(a);
     }
@@ -119,9 +121,10 @@ int main(int argc, char** argv) {
         const double p = serial.parallelShare, largest = serial.largestIslandShare;
         std::printf(
             "%-16s %7d %8.0f %10.3f %8.2f %9.3f %9.3f %8.2f %8.2f %9.2f %9.2f %9.1e %5s  %016llx\n",
-            name.c_str(), r.threads, r.islands, r.medianMs, serial.medianMs / r.medianMs, p, largest,
-            amdahl(p, 16), amdahl(p, 64), islandBound(p, largest, 16), islandBound(p, largest, 64),
-            r.residual, same ? "yes" : "NO", static_cast<unsigned long long>(r.hash));
+            name.c_str(), r.threads, r.islands, r.medianMs, serial.medianMs / r.medianMs, p,
+            largest, amdahl(p, 16), amdahl(p, 64), islandBound(p, largest, 16),
+            islandBound(p, largest, 64), r.residual, same ? "yes" : "NO",
+            static_cast<unsigned long long>(r.hash));
         std::fflush(stdout);
       }
     } catch (const std::exception& e) {

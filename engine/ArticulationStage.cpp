@@ -321,9 +321,10 @@ void ArticulationStage::updateProxies(Record& r, geometry::BodyState& state) con
 }
 
 void ArticulationStage::predictVelocities(const Eigen::Vector3d& gravity, double h,
-                                          geometry::BodyState& state) {
-  for (Record& r : records_) {
-    if (!r.alive) continue;
+                                          geometry::BodyState& state, StepExecutor& executor) {
+  executor.forEach(records_.size(), [&](std::size_t a) {
+    Record& r = records_[a];
+    if (!r.alive) return;
     if (r.model->gravity() != gravity) r.model = std::make_unique<Articulation>(r.links, gravity);
     r.totalTau = r.tau;
     r.totalTau += r.constantTau;
@@ -331,13 +332,14 @@ void ArticulationStage::predictVelocities(const Eigen::Vector3d& gravity, double
     r.constrained = false;
     integrators::predictArticulationVelocity(*r.model, r.q, r.qd, r.totalTau, h, r.aba, r.qdd);
     updateProxies(r, state);
-  }
+  });
 }
 
 void ArticulationStage::integratePositions(double h, TreeIntegrator integrator,
-                                           geometry::BodyState& state) {
-  for (Record& r : records_) {
-    if (!r.alive) continue;
+                                           geometry::BodyState& state, StepExecutor& executor) {
+  executor.forEach(records_.size(), [&](std::size_t a) {
+    Record& r = records_[a];
+    if (!r.alive) return;
     if (integrator == TreeIntegrator::RungeKutta && !r.constrained) {
       if (!r.integration) r.integration = std::make_shared<integrators::TreeStepScratch>();
       r.qd = r.qdStart;
@@ -346,7 +348,7 @@ void ArticulationStage::integratePositions(double h, TreeIntegrator integrator,
       integrators::integrateConfiguration(*r.model, r.q, r.qd, h);
     }
     updateProxies(r, state);
-  }
+  });
 }
 
 void ArticulationStage::clearForces() {

@@ -21,6 +21,7 @@
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/RowSource.hpp>
+#include <coulomb/engine/StepExecutor.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Ids.hpp>
@@ -109,7 +110,10 @@ class ArticulationStage final : public RowSource {
 
   // ---- the step, in order --------------------------------------------------------------------
   /// v* = qd + h ABA(q, qd, tau) with the world's gravity; proxies get the links' velocities.
-  void predictVelocities(const Eigen::Vector3d& gravity, double h, geometry::BodyState& state);
+  /// Trees are independent here: they run on `executor`'s threads (each writes its own record
+  /// and its links' proxies).
+  void predictVelocities(const Eigen::Vector3d& gravity, double h, geometry::BodyState& state,
+                         StepExecutor& executor);
   /// Collision filter: false for two links of one tree unless self-collision is on (then false
   /// only for a parent and its child). True for any pair not made of two links.
   [[nodiscard]] bool keepPair(std::size_t bodyA, std::size_t bodyB) const;
@@ -141,7 +145,8 @@ class ArticulationStage final : public RowSource {
   /// q <- q (+) h qd on the joint manifolds; proxies follow forward kinematics. With
   /// TreeIntegrator::RungeKutta a tree that no row touched this step (applyImpulses never saw it)
   /// is instead integrated by Runge-Kutta from its state at predictVelocities.
-  void integratePositions(double h, TreeIntegrator integrator, geometry::BodyState& state);
+  void integratePositions(double h, TreeIntegrator integrator, geometry::BodyState& state,
+                          StepExecutor& executor);
   /// Split impulse: q <- q (+) h M^-1 J_t^T p (pseudo-velocities, then discarded), `map` that
   /// of the pseudo problem's rows.
   void applyPseudoImpulses(TreeRowMap& map, const std::vector<RowBlockSlot>& slots,

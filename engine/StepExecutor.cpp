@@ -26,7 +26,9 @@ StepExecutor::~StepExecutor() = default;
 StepExecutor::StepExecutor(StepExecutor&& other) noexcept = default;
 StepExecutor& StepExecutor::operator=(StepExecutor&& other) noexcept = default;
 
-StepExecutor::StepExecutor(const StepExecutor& other) { setThreads(other.requested_); }
+StepExecutor::StepExecutor(const StepExecutor& other) {
+  setThreads(other.requested_);
+}
 
 StepExecutor& StepExecutor::operator=(const StepExecutor& other) {
   if (this != &other) setThreads(other.requested_);
@@ -63,7 +65,7 @@ void StepExecutor::setThreads(int requested) {
 #endif
 }
 
-void StepExecutor::forEach(std::size_t count, const std::function<void(std::size_t)>& task) {
+void StepExecutor::forEach(std::size_t count, geometry::TaskRef task) {
 #ifdef COULOMB_WITH_TBB
   if (arena_ && count > 1) {
     arena_->arena.execute([&] {

@@ -5,8 +5,9 @@
 // thread. Every task writes only its own island's data, so the results are the same, bit for bit,
 // whatever the number of threads and however the tasks are scheduled. The World owns one executor
 // (its own task arena: no process-wide scheduler setting is changed).
+#include <coulomb/geometry/ParallelFor.hpp>
+
 #include <cstddef>
-#include <functional>
 #include <memory>
 
 namespace coulomb::engine {
@@ -33,7 +34,7 @@ class StepExecutor {
 
   /// Calls task(i) for every i in [0, count), in any order and on any of the threads, and returns
   /// when all are done; the first exception a task throws is rethrown here.
-  void forEach(std::size_t count, const std::function<void(std::size_t)>& task);
+  void forEach(std::size_t count, geometry::TaskRef task);
 
  private:
   struct Arena;

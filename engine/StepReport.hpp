@@ -72,10 +72,11 @@ struct StepReport {
   std::vector<std::string> warnings;
   double seconds = 0.0;  // [s] wall clock of the whole step
   // [s] wall clock of the stages WorldSettings::threads spreads over its threads: the islands'
-  // rows, solves and impulses, and the split impulse (docs/embedding.md, "Threads"). The rest
-  // of `seconds` runs on the calling thread.
+  // rows, solves and impulses, the split impulse, and the trees' velocity prediction and
+  // integration (docs/embedding.md, "Threads"). The rest of `seconds` runs on the calling thread.
   double islandStageSeconds = 0.0;
   double penetrationStageSeconds = 0.0;
+  double treeStageSeconds = 0.0;
   int threads = 1;  // the threads the step ran on (World::threads())
 
   [[nodiscard]] std::size_t fallbacks() const {

@@ -14,8 +14,8 @@
 #include <coulomb/engine/Sleep.hpp>
 #include <coulomb/engine/SolverPromotion.hpp>
 #include <coulomb/engine/StepData.hpp>
-#include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/StepExecutor.hpp>
+#include <coulomb/engine/StepReport.hpp>
 #include <coulomb/engine/WorldSettings.hpp>
 #include <coulomb/geometry/BodyState.hpp>
 #include <coulomb/geometry/Collider.hpp>
@@ -199,8 +199,9 @@ class World {
   [[nodiscard]] bool jointBroken(geometry::JointId id) const { return joints_.broken(id); }
   /// Called for every island of every step with its assembled problem, once the islands are
   /// solved, in island order on the thread that called step() (the island id is that of the
-  /// step's IslandReport; stepCount() is the index of the step being taken). For capturing problems, e.g. `coulomb run --capture`. Empty (the default) = none.
-  /// Not part of the state: a copy or snapshot does not carry it.
+  /// step's IslandReport; stepCount() is the index of the step being taken). For capturing
+  /// problems, e.g. `coulomb run --capture`. Empty (the default) = none. Not part of the state: a
+  /// copy or snapshot does not carry it.
   using ProblemObserver =
       std::function<void(std::int32_t island, const solvers::ContactProblem& problem)>;
   void setProblemObserver(ProblemObserver observer) { problemObserver_ = std::move(observer); }
@@ -211,6 +212,8 @@ class World {
   void guard(const char* stage, StepReport& report);
   // The stages of step() (WorldStep.cpp), each reading and writing `step_`.
   void detectContacts(double h);
+  /// The narrow phase's share of the step's threads (empty with one thread).
+  [[nodiscard]] geometry::ParallelFor narrowPhaseThreads();
   void modifyContacts();  // the pre-solve hook
   geometry::ColliderId attachCollider(geometry::BodyId body, ResolvedShape shape, bool continuous);
   [[nodiscard]] const geometry::Collider* findCollider(geometry::ColliderId id) const;

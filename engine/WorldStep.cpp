@@ -40,8 +40,10 @@ const StepReport& World::step(double h) {
 
   quarantine_.begin(state_, articulations_);                         // last good state
   integrators::predictFreeVelocities(state_, settings_.gravity, h);  // v*
-  articulations_.predictVelocities(settings_.gravity, h, state_);    // trees' v* (ABA)
-  guard("after the velocity prediction", report);                    // bad v*
+  auto treesStarted = std::chrono::steady_clock::now();
+  articulations_.predictVelocities(settings_.gravity, h, state_, executor_);  // trees' v* (ABA)
+  report.treeStageSeconds = secondsSince(treesStarted);
+  guard("after the velocity prediction", report);  // bad v*
   detectContacts(h);  // manifolds, margins swept by v*; touched sleepers wake
   modifyContacts();   // the user's pre-solve hook: friction, restitution, surface speed, off
   buildIslands();     // edges of every row source -> islands with per-source item lists
@@ -59,8 +61,10 @@ const StepReport& World::step(double h) {
   joints_.correctDrift(state_, step_.activeJoints, settings_.jointStabilization, h,
                        report.joints);         // predicted state
   integrators::integratePositions(state_, h);  // x+ from v+
-  articulations_.integratePositions(h, settings_.treeIntegrator,
-                                    state_);          // q+ from qd+; link proxies follow
+  treesStarted = std::chrono::steady_clock::now();
+  articulations_.integratePositions(h, settings_.treeIntegrator, state_,
+                                    executor_);  // q+ from qd+; link proxies follow
+  report.treeStageSeconds += secondsSince(treesStarted);
   collision_.clampContinuous(colliders_, state_, h);  // continuous bodies stop at first touch
   const auto penetrationStarted = std::chrono::steady_clock::now();
   correctPenetrations();  // split impulse (positions only)
@@ -105,20 +109,28 @@ RowSource& World::rowSource(RowOwner owner) {
 
 void World::detectContacts(double h) {
   const geometry::SweepMotion sweep{state_.linearVelocities, state_.angularVelocities, h};
-  collision_.step(colliders_, state_.poses, sweep, [this](const auto& a, const auto& b) {
-    if (a.sensor && b.sensor) return false;
-    const std::uint32_t i = a.body.index, j = b.body.index;
-    if (!articulations_.keepPair(i, j)) return false;
-    if (quarantine_.isolated(i) || quarantine_.isolated(j)) return false;
-    // A pair is looked at when something in it can move: an awake body, a tree's link, or a
-    // moving kinematic body against a sleeping one (which it wakes).
-    const bool moves = state_.isDynamic(i) || state_.isDynamic(j) || articulations_.isLink(i) ||
-                       articulations_.isLink(j) ||
-                       (state_.asleep[j] != 0 && state_.isMovingKinematic(i)) ||
-                       (state_.asleep[i] != 0 && state_.isMovingKinematic(j));
-    return moves && (!contactFilter_ || contactFilter_(a, b));
-  });
+  collision_.step(
+      colliders_, state_.poses, sweep,
+      [this](const auto& a, const auto& b) {
+        if (a.sensor && b.sensor) return false;
+        const std::uint32_t i = a.body.index, j = b.body.index;
+        if (!articulations_.keepPair(i, j)) return false;
+        if (quarantine_.isolated(i) || quarantine_.isolated(j)) return false;
+        // A pair is looked at when something in it can move: an awake body, a tree's link, or a
+        // moving kinematic body against a sleeping one (which it wakes).
+        const bool moves = state_.isDynamic(i) || state_.isDynamic(j) || articulations_.isLink(i) ||
+                           articulations_.isLink(j) ||
+                           (state_.asleep[j] != 0 && state_.isMovingKinematic(i)) ||
+                           (state_.asleep[i] != 0 && state_.isMovingKinematic(j));
+        return moves && (!contactFilter_ || contactFilter_(a, b));
+      },
+      narrowPhaseThreads());
   sleep_.wakeTouched(collision_.cache().manifolds(), state_, settings_.gravity, h);
+}
+
+geometry::ParallelFor World::narrowPhaseThreads() {
+  if (executor_.threads() == 1) return {};
+  return [this](std::size_t count, geometry::TaskRef task) { executor_.forEach(count, task); };
 }
 
 void World::buildIslands() {
@@ -236,9 +248,9 @@ void World::correctPenetrations(IslandWork& island) {
   normals.normalRows.clear();
   for (std::size_t k = contacts.first; k < contacts.end(); ++k)
     normals.normalRows.push_back(island.assembled.slots[k].offset);
-  island.penetration = correctPenetration(
-      island.rows.in(contacts), collision_.cache().manifolds(), settings_.contact.penetration,
-      step_.h, state_, *solver, &articulations_, &normals);
+  island.penetration = correctPenetration(island.rows.in(contacts), collision_.cache().manifolds(),
+                                          settings_.contact.penetration, step_.h, state_, *solver,
+                                          &articulations_, &normals);
   normals.W = solvers::DelassusOperator();  // W's storage is the assembler's to reuse
   island.penetrationSeconds = secondsSince(started);
 }

@@ -45,7 +45,8 @@ std::optional<std::string> CollisionPipeline::validateCollider(const Collider& c
 const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Collider>& colliders,
                                                             std::span<const Pose> bodyPoses,
                                                             const SweepMotion& motion,
-                                                            const PairPredicate& keepPair) {
+                                                            const PairPredicate& keepPair,
+                                                            const ParallelFor& parallel) {
   diagnostics_.failures.clear();
   diagnostics_.stats = {};
   const std::size_t n = colliders.size();
@@ -96,7 +97,7 @@ const std::vector<ContactManifold>& CollisionPipeline::step(const std::vector<Co
                          keepPair, diagnostics_.failures, sweeps_);
   fresh_.clear();
   narrowPhase_.collide(pairs, colliders, shapePoses_, bodyPoses, scene_, fresh_,
-                       diagnostics_.failures, sweeps_);
+                       diagnostics_.failures, sweeps_, parallel);
   dropCoveredCapsuleEnds(colliders, shapePoses_, fresh_,
                          &capsuleEndKeys_);  // ghost points of capsule chains
   // Nothing to do, and nothing spent, unless some collider asked for it.

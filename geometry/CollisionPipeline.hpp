@@ -9,6 +9,7 @@
 #include <coulomb/geometry/ContactManifold.hpp>
 #include <coulomb/geometry/FclAdapter.hpp>
 #include <coulomb/geometry/NarrowPhase.hpp>
+#include <coulomb/geometry/ParallelFor.hpp>
 #include <coulomb/geometry/SweptMargin.hpp>
 
 #include <algorithm>
@@ -57,10 +58,13 @@ class CollisionPipeline {
   /// `motion` its velocities over the step (sweeps the margins; empty: the fixed margin).
   /// A collider with a bad shape, an unknown body or a non-finite pose is skipped and reported;
   /// a pair FCL fails on is skipped and reported; nothing throws.
+  /// `parallel` (empty: none) runs the narrow phase's pairs on the caller's threads; the
+  /// manifolds are the same, bit for bit, with or without it (NarrowPhase::collide).
   const std::vector<ContactManifold>& step(const std::vector<Collider>& colliders,
                                            std::span<const Pose> bodyPoses,
                                            const SweepMotion& motion,
-                                           const PairPredicate& keepPair = {});
+                                           const PairPredicate& keepPair = {},
+                                           const ParallelFor& parallel = {});
   /// The same with the fixed margin alone (no velocities).
   const std::vector<ContactManifold>& step(const std::vector<Collider>& colliders,
                                            std::span<const Pose> bodyPoses,

@@ -247,21 +247,22 @@ bool meshMeshContact(const Collider& a, const Pose& poseA, const Collider& b, co
 
 bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collider& b,
                               const Pose& poseB, const FclScene& scene, PairContact& out,
-                              std::string& error, double margin) const {
+                              std::string& error, double margin,
+                              NarrowPhaseScratch& scratch) const {
   out.points.clear();
   error.clear();
   const bool swap = a.shape->index() > b.shape->index();
-  const int handled = swap ? closedForm(*b.shape, poseB, *a.shape, poseA, margin, out, scratch_)
-                           : closedForm(*a.shape, poseA, *b.shape, poseB, margin, out, scratch_);
+  const int handled = swap ? closedForm(*b.shape, poseB, *a.shape, poseA, margin, out, scratch)
+                           : closedForm(*a.shape, poseA, *b.shape, poseB, margin, out, scratch);
   if (handled >= 0) {
     if (swap) out.normal = -out.normal;
     return handled == 1 && !out.points.empty();
   }
   out.points.clear();
   if (a.shape->index() == kMesh && b.shape->index() == kMesh)
-    return meshMeshContact(a, poseA, b, poseB, scene, margin, out, featureScratch(scratch_));
+    return meshMeshContact(a, poseA, b, poseB, scene, margin, out, featureScratch(scratch));
   if (a.shape->index() == kMesh || b.shape->index() == kMesh)
-    return meshContact(a, poseA, b, poseB, scene, margin, out, error);
+    return meshContact(a, poseA, b, poseB, scene, margin, out, error, scratch);
   // FCL's one point and normal made into the manifold of the supporting features; shapes FCL
   // finds exactly touching (distance 0, no direction) get the face axis that separates most.
   const bool touching = viaFcl(a, poseA, b, poseB, scene, margin, out, error);
@@ -269,7 +270,7 @@ bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collid
   // MPR's normal of an overlap below its tolerance is arbitrary (docs/fcl-notes.md section 3: a
   // cylinder exactly on a box came back with a normal 90 degrees off): no guess then.
   const bool reliable = touching && !out.points.empty() && maxAbsDepth(out) >= kMprTolerance;
-  FeatureScratch& features = featureScratch(scratch_);
+  FeatureScratch& features = featureScratch(scratch);
   PairContact& refined = features.one;
   refined.points.clear();
   const ConvexPart partA{.shape = a.shape.get(), .pose = poseA};
@@ -285,14 +286,15 @@ bool NarrowPhase::contactPair(const Collider& a, const Pose& poseA, const Collid
 
 bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collider& b,
                               const Pose& poseB, const FclScene& scene, double margin,
-                              PairContact& out, std::string& error) const {
+                              PairContact& out, std::string& error,
+                              NarrowPhaseScratch& scratch) const {
   if (!viaFcl(a, poseA, b, poseB, scene, margin, out, error) && !error.empty()) return false;
   const bool meshIsA = a.shape->index() == kMesh;
   const Collider& mesh = meshIsA ? a : b;
   const Collider& other = meshIsA ? b : a;
   const Pose& meshPose = meshIsA ? poseA : poseB;
   const TriangleMesh& shape = std::get<TriangleMesh>(*mesh.shape);
-  FeatureScratch& features = featureScratch(scratch_);
+  FeatureScratch& features = featureScratch(scratch);
   Aabb box = scene.worldAabb(other.id);
   box.min.array() -= margin;
   box.max.array() += margin;
@@ -393,37 +395,64 @@ bool NarrowPhase::viaFcl(const Collider& a, const Pose& poseA, const Collider& b
   return true;
 }
 
+void NarrowPhase::collidePair(const CandidatePair& pair, const std::vector<Collider>& colliders,
+                              std::span<const Pose> shapePoses, std::span<const Pose> bodyPoses,
+                              const FclScene& scene, std::span<const double> sweeps,
+                              NarrowPhaseChunk& chunk) const {
+  const Collider& a = colliders[pair.a];
+  const Collider& b = colliders[pair.b];
+  if (a.body.index >= bodyPoses.size() || b.body.index >= bodyPoses.size()) {
+    chunk.failures.push_back({a.id, b.id, "body index out of range of the body poses"});
+    return;
+  }
+  double margin = settings_.margin;
+  if (pair.a < sweeps.size() && pair.b < sweeps.size()) margin += sweeps[pair.a] + sweeps[pair.b];
+  PairContact& contact = chunk.pair;
+  const bool touching = contactPair(a, shapePoses[pair.a], b, shapePoses[pair.b], scene, contact,
+                                    chunk.error, margin, chunk.scratch);
+  if (!chunk.error.empty()) {
+    chunk.failures.push_back({a.id, b.id, chunk.error});
+    return;
+  }
+  if (!touching) return;
+  bool finite = contact.normal.allFinite();
+  for (const ContactCandidate& c : contact.points)
+    finite = finite && c.position.allFinite() && std::isfinite(c.depth);
+  if (!finite) {
+    chunk.failures.push_back({a.id, b.id, "contact produced a non-finite value; pair skipped"});
+    return;
+  }
+  chunk.manifolds.push_back(
+      finishManifold(contact, a, b, bodyPoses[a.body.index], bodyPoses[b.body.index]));
+}
+
 void NarrowPhase::collide(std::span<const CandidatePair> pairs,
                           const std::vector<Collider>& colliders, std::span<const Pose> shapePoses,
                           std::span<const Pose> bodyPoses, const FclScene& scene,
                           std::vector<ContactManifold>& out,
-                          std::vector<CollisionFailure>& failures, std::span<const double> sweeps) {
-  std::string error;
-  for (const CandidatePair& pair : pairs) {
-    const Collider& a = colliders[pair.a];
-    const Collider& b = colliders[pair.b];
-    if (a.body.index >= bodyPoses.size() || b.body.index >= bodyPoses.size()) {
-      failures.push_back({a.id, b.id, "body index out of range of the body poses"});
-      continue;
-    }
-    double margin = settings_.margin;
-    if (pair.a < sweeps.size() && pair.b < sweeps.size()) margin += sweeps[pair.a] + sweeps[pair.b];
-    const bool touching = contactPair(a, shapePoses[pair.a], b, shapePoses[pair.b], scene,
-                                      pairScratch_, error, margin);
-    if (!error.empty()) {
-      failures.push_back({a.id, b.id, error});
-      continue;
-    }
-    if (!touching) continue;
-    bool finite = pairScratch_.normal.allFinite();
-    for (const ContactCandidate& c : pairScratch_.points)
-      finite = finite && c.position.allFinite() && std::isfinite(c.depth);
-    if (!finite) {
-      failures.push_back({a.id, b.id, "contact produced a non-finite value; pair skipped"});
-      continue;
-    }
-    out.push_back(
-        finishManifold(pairScratch_, a, b, bodyPoses[a.body.index], bodyPoses[b.body.index]));
+                          std::vector<CollisionFailure>& failures, std::span<const double> sweeps,
+                          const ParallelFor& parallel) {
+  // Fixed chunks of consecutive pairs whatever the threads: every pair is computed the same way
+  // and the results are merged in pair order, so they do not depend on the thread count.
+  constexpr std::size_t kPairsPerChunk = 32;
+  const std::size_t chunkCount = (pairs.size() + kPairsPerChunk - 1) / kPairsPerChunk;
+  if (chunks_.size() < chunkCount) chunks_.resize(chunkCount);
+  const auto run = [&](std::size_t c) {
+    NarrowPhaseChunk& chunk = chunks_[c];
+    chunk.manifolds.clear();
+    chunk.failures.clear();
+    const std::size_t end = std::min(pairs.size(), (c + 1) * kPairsPerChunk);
+    for (std::size_t k = c * kPairsPerChunk; k < end; ++k)
+      collidePair(pairs[k], colliders, shapePoses, bodyPoses, scene, sweeps, chunk);
+  };
+  if (parallel && chunkCount > 1) {
+    parallel(chunkCount, run);
+  } else {
+    for (std::size_t c = 0; c < chunkCount; ++c) run(c);
+  }
+  for (std::size_t c = 0; c < chunkCount; ++c) {
+    out.insert(out.end(), chunks_[c].manifolds.begin(), chunks_[c].manifolds.end());
+    failures.insert(failures.end(), chunks_[c].failures.begin(), chunks_[c].failures.end());
   }
 }
 

@@ -90,10 +90,10 @@ std::shared_ptr<PyWorld> makeWorld(const py::object& scene, std::optional<double
   }
   if (!gravity.is_none()) loaded.settings.gravity = vector3(gravity, "gravity");
   if (!threads.is_none())  // a count or "hardware" (docs/python.md)
-    loaded.settings.threads = scenes::parseThreads(
-        py::isinstance<py::str>(threads) ? threads.cast<std::string>()
-                                         : std::to_string(threads.cast<long long>()),
-        "threads");
+    loaded.settings.threads = scenes::parseThreads(py::isinstance<py::str>(threads)
+                                                       ? threads.cast<std::string>()
+                                                       : std::to_string(threads.cast<long long>()),
+                                                   "threads");
   return std::make_shared<PyWorld>(engine::io::buildWorld(loaded));
 }
 

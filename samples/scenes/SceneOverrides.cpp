@@ -14,8 +14,9 @@ using engine::CoulombError;
 
 int parseThreads(const std::string& text, const std::string& who) {
   if (text == "hardware") return 0;
-  const bool digits = !text.empty() && text.size() <= 6 &&
-                      std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const bool digits =
+      !text.empty() && text.size() <= 6 &&
+      std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
   const int count = digits ? std::stoi(text) : -1;
   if (count < 1 || count > engine::WorldSettings::kMaxThreads)
     throw CoulombError(who + ": must be a thread count in 1.." +
@@ -25,7 +26,8 @@ int parseThreads(const std::string& text, const std::string& who) {
 }
 
 void applyOverrides(engine::io::Scene& scene, const SceneOverrides& overrides) {
-  if (overrides.threads) scene.settings.threads = parseThreads(*overrides.threads, "threads override");
+  if (overrides.threads)
+    scene.settings.threads = parseThreads(*overrides.threads, "threads override");
   if (overrides.timeStep) {
     if (!std::isfinite(*overrides.timeStep) || *overrides.timeStep <= 0.0)
       throw CoulombError("time step override: must be finite and > 0 s");
