@@ -56,7 +56,8 @@ std::optional<solvers::SolverReport> correctPenetration(
     std::span<const joints::RowBlock> contactBlocks,
     const std::vector<geometry::ContactManifold>& manifolds, const PenetrationSettings& settings,
     double h, geometry::BodyState& state, const solvers::ContactSolver& solver,
-    ArticulationStage* articulations, const VelocityProblemNormals* velocityProblem) {
+    ArticulationStage* articulations, const VelocityProblemNormals* velocityProblem,
+    const solvers::SolverOptions& sweep) {
   if (settings.method != PenetrationMethod::SplitImpulse) return std::nullopt;
   // Nothing beyond the slop: nothing to build (the common case of a resting stack).
   auto pseudoVelocityTarget = [&](const joints::RowBlock& block) {
@@ -106,7 +107,7 @@ std::optional<solvers::SolverReport> correctPenetration(
   for (std::size_t k = 0; k < normals.blocks.size(); ++k)
     assembled.problem.q[assembled.slots[k].offset] = normals.blocks[k].bias[0];
 
-  solvers::SolverOptions options;
+  solvers::SolverOptions options = sweep;
   options.maxIterations = settings.iterations;
   options.tolerance = settings.tolerance;
   options.useWarmStart = false;

@@ -100,4 +100,8 @@ void StepExecutor::forEach(std::size_t count, geometry::TaskRef task) {
   for (std::size_t i = 0; i < count; ++i) task(i);
 }
 
+void StepExecutor::forEach(std::size_t count, solvers::IndexTask task) {
+  forEach(count, geometry::TaskRef([&task](std::size_t i) { task(i); }));
+}
+
 }  // namespace coulomb::engine

@@ -6,16 +6,17 @@
 // whatever the number of threads and however the tasks are scheduled. The World owns one executor
 // (its own task arena: no process-wide scheduler setting is changed).
 #include <coulomb/geometry/ParallelFor.hpp>
+#include <coulomb/solvers/ParallelLoop.hpp>
 
 #include <cstddef>
 #include <memory>
 
 namespace coulomb::engine {
 
-class StepExecutor {
+class StepExecutor final : public solvers::ParallelLoop {
  public:
   StepExecutor();
-  ~StepExecutor();
+  ~StepExecutor() override;
   StepExecutor(const StepExecutor& other);  // the same thread count, an arena of its own
   StepExecutor& operator=(const StepExecutor& other);
   StepExecutor(StepExecutor&& other) noexcept;
@@ -26,7 +27,7 @@ class StepExecutor {
   /// on it). Without oneTBB every count runs on the calling thread.
   void setThreads(int requested);
   /// The threads a step uses: 1 without oneTBB or for threads = 1.
-  [[nodiscard]] int threads() const { return threads_; }
+  [[nodiscard]] int threads() const override { return threads_; }
   /// True when Coulomb was built with oneTBB (threads above 1 are used).
   [[nodiscard]] static bool parallel();
   /// The machine's hardware threads as the task system sees them (1 without oneTBB).
@@ -35,6 +36,9 @@ class StepExecutor {
   /// Calls task(i) for every i in [0, count), in any order and on any of the threads, and returns
   /// when all are done; the first exception a task throws is rethrown here.
   void forEach(std::size_t count, geometry::TaskRef task);
+  /// The same for a solver (SolverOptions::parallel: the blocks of one colour of a sweep); called
+  /// from inside a task too (a large island's solve), where oneTBB nests it in the same arena.
+  void forEach(std::size_t count, solvers::IndexTask task) override;
 
  private:
   struct Arena;

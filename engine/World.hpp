@@ -225,6 +225,8 @@ class World {
   /// the warnings of islands no solver could take.
   void reportIslands();
   [[nodiscard]] const solvers::SolverChoice& choiceOf(const IslandWork& island) const;
+  // The options every solve of the step shares: the sweep split and the executor's threads.
+  [[nodiscard]] solvers::SolverOptions sweepOptions();
   void correctPenetrations();
   void correctPenetrations(IslandWork& island);
   void fillIslandReport(const IslandWork& island, IslandReport& report) const;

@@ -185,9 +185,19 @@ void World::solveIsland(IslandWork& island) {
       .choose(problem, {island.assembled.degreesOfFreedom}, choice, settings_.solve.options,
               island.plan);
   if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
+  island.plan.options.parallel = sweepOptions().parallel;
   solvers::solveWithFallback(problem, island.plan, registry_, island.solvers, island.outcome);
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);
+}
+
+solvers::SolverOptions World::sweepOptions() {
+  // The sweep order is the policy's whatever the thread count (SolverOptions::parallel only lends
+  // the threads): results stay the same bits for every count.
+  solvers::SolverOptions options;
+  options.sweepPartBlocks = settings_.solve.options.sweepPartBlocks;
+  options.parallel = executor_.threads() > 1 ? &executor_ : nullptr;
+  return options;
 }
 
 const solvers::SolverChoice& World::choiceOf(const IslandWork& island) const {
@@ -250,7 +260,7 @@ void World::correctPenetrations(IslandWork& island) {
     normals.normalRows.push_back(island.assembled.slots[k].offset);
   island.penetration = correctPenetration(island.rows.in(contacts), collision_.cache().manifolds(),
                                           settings_.contact.penetration, step_.h, state_, *solver,
-                                          &articulations_, &normals);
+                                          &articulations_, &normals, sweepOptions());
   normals.W = solvers::DelassusOperator();  // W's storage is the assembler's to reuse
   island.penetrationSeconds = secondsSince(started);
 }

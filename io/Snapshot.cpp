@@ -41,6 +41,10 @@ void transferPolicy(Ar& ar, solvers::SolvePolicy& p) {
   io(ar, p.options.useWarmStart);
   io(ar, p.options.recordHistory);
   io(ar, p.options.stallWindow);
+  if (ar.version() >= 8)
+    io(ar, p.options.sweepPartBlocks);
+  else if constexpr (Ar::kLoading)
+    p.options.sweepPartBlocks = 0;  // the block order those files were written with
   solvers::ChooserSettings& c = p.chooser;
   io(ar, c.pileNu);
   io(ar, c.newtonMaxUnknowns);

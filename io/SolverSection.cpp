@@ -80,7 +80,8 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
   node.allowOnly({"name", "tolerance", "max_iterations", "time_limit", "warm_start",
                   "restitution_threshold", "speculative_contacts", "speculative_margin",
                   "speculative_sweep", "penetration", "impact_law", "touching_tolerance",
-                  "max_impact_sweeps", "elastic_turning", "promote_fallbacks"});
+                  "max_impact_sweeps", "elastic_turning", "promote_fallbacks",
+                  "sweep_part_blocks"});
   solvers::SolverOptions& options = settings.solve.options;
   if (node.has("name")) settings.solve.choice = parseSolverRequest(node.child("name"));
   if (node.has("tolerance")) options.tolerance = node.child("tolerance").positiveNumber();
@@ -88,6 +89,11 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
     const std::uint64_t iterations = node.child("max_iterations").unsignedInteger();
     if (iterations > 100000000) node.child("max_iterations").fail("must be <= 1e8");
     options.maxIterations = static_cast<int>(iterations);
+  }
+  if (node.has("sweep_part_blocks")) {
+    const std::uint64_t blocks = node.child("sweep_part_blocks").unsignedInteger();
+    if (blocks > 100000000) node.child("sweep_part_blocks").fail("must be <= 1e8 (0 = never)");
+    options.sweepPartBlocks = static_cast<int>(blocks);
   }
   if (node.has("time_limit")) options.timeLimitSeconds = node.child("time_limit").positiveNumber();
   if (node.has("warm_start")) options.useWarmStart = node.child("warm_start").boolean();

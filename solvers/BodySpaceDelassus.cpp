@@ -33,6 +33,31 @@ void BodySpaceDelassus::reset(int bodyCount) {
   g_.assign(static_cast<std::size_t>(12) * size(), 0.0);
 }
 
+void BodySpaceDelassus::gather(const int* blocks, int count, BodySpaceDelassus& out) const {
+  out.size_.resize(count);
+  for (int i = 0; i < count; ++i) out.size_[i] = size_[blocks[i]];
+  out.bodies_ = bodies_;
+  out.nonFinite_ = nonFinite_;
+  out.rescan_ = rescan_;
+  out.entriesValid_ = false;
+  out.diagonal_.clear();
+  out.offset_.resize(count + 1);
+  out.offset_[0] = 0;
+  for (int i = 0; i < count; ++i) out.offset_[i + 1] = out.offset_[i] + out.size_[i];
+  out.body_.resize(2 * static_cast<std::size_t>(count));
+  out.j_.resize(static_cast<std::size_t>(12) * out.offset_[count]);
+  out.g_.resize(out.j_.size());
+  for (int i = 0; i < count; ++i) {
+    const int b = blocks[i];
+    out.body_[2 * i] = body_[2 * b];
+    out.body_[2 * i + 1] = body_[2 * b + 1];
+    const auto from = static_cast<std::ptrdiff_t>(12) * offset_[b];
+    const auto to = static_cast<std::ptrdiff_t>(12) * out.offset_[i];
+    std::copy_n(j_.begin() + from, 12 * size_[b], out.j_.begin() + to);
+    std::copy_n(g_.begin() + from, 12 * size_[b], out.g_.begin() + to);
+  }
+}
+
 void BodySpaceDelassus::noteSideSet(int block, int side, const double* values, std::size_t count) {
   // x * 0 is 0 for finite x and NaN for inf or NaN (see allFinite).
   double s = 0.0;

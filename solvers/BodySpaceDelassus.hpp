@@ -38,6 +38,8 @@ class BodySpaceDelassus {
   [[nodiscard]] int blockSize(int b) const { return size_[b]; }
   [[nodiscard]] int blockOffset(int b) const { return offset_[b]; }
   [[nodiscard]] const std::vector<int>& blockSizes() const { return size_; }
+  /// The local body side `side` (0 or 1) of block b acts on; -1 when that side has no unknowns.
+  [[nodiscard]] int blockBody(int b, int side) const { return body_[2 * b + side]; }
 
   /// dv = M^-1 J^T x (6 per body: linear, angular).
   void bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd& dv) const;
@@ -72,6 +74,10 @@ class BodySpaceDelassus {
   /// Every W_bb, row-major k x k at 9 b; computed once on the first call (validation, the
   /// chooser and the prepared problem all read them) and kept until a setSide.
   [[nodiscard]] const std::vector<double>& diagonalBlocks() const;
+  /// The listed blocks, in that order, as an operator of their own on the same bodies: block i
+  /// of `out` is block blocks[i] here (a sweep's blocks made contiguous in memory, so that a
+  /// sweep in that order streams them). Reuses out's storage.
+  void gather(const int* blocks, int count, BodySpaceDelassus& out) const;
   /// The operator of the given rows only (each a 1-row block on the same bodies), e.g. the
   /// contacts' normal rows for the split impulse: W' = W restricted to those rows and columns.
   [[nodiscard]] BodySpaceDelassus selectRows(const std::vector<int>& rows) const;

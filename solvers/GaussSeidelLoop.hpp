@@ -4,8 +4,11 @@
 // q_c + sum_{d != c} W_cd r_d (3.1) and let the solver's local rule propose r_c, relax the step
 // (3.5), solve scalar rows exactly (10.1), check the common residual every few sweeps on u = W r +
 // q recomputed, keep the best iterate, detect stalls.
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
+#include <coulomb/solvers/FunctionRef.hpp>
 #include <coulomb/solvers/PreparedProblem.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
+#include <coulomb/solvers/SweepPartition.hpp>
 
 #include <Eigen/Core>
 
@@ -31,28 +34,28 @@ struct GaussSeidelSettings {
 
 // Proposes a new r_c for contact block b given its local free velocity q~ (r holds r_c on entry).
 // A non-owning reference to the solver's local rule (called once per contact per sweep: no
-// std::function, no allocation); the rule must outlive the call of runGaussSeidel.
-class ContactUpdate {
- public:
-  template <class Rule>
-  explicit ContactUpdate(Rule& rule)
-      : rule_(&rule),
-        call_([](void* r, int block, const Eigen::Vector3d& qTilde, Eigen::Vector3d& out) {
-          (*static_cast<Rule*>(r))(block, qTilde, out);
-        }) {}
-  void operator()(int block, const Eigen::Vector3d& qTilde, Eigen::Vector3d& r) const {
-    call_(rule_, block, qTilde, r);
-  }
+// std::function, no allocation); the rule must outlive the call of runGaussSeidel. With
+// SolverOptions::parallel it is called for several blocks at once: it must only read shared data.
+using ContactUpdate = FunctionRef<void(int, const Eigen::Vector3d&, Eigen::Vector3d&)>;
 
- private:
-  void* rule_;
-  void (*call_)(void*, int, const Eigen::Vector3d&, Eigen::Vector3d&);
+// What a visit of one block reads, copied in a split sweep's order (GaussSeidelLoop.cpp).
+struct SweepBlock {
+  int block = 0, offset = 0;
+  bool contact = false;
+  double mu = 0.0;
+  double q[3] = {0, 0, 0};
+  double diagonal[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // W_bb, row-major k x k
 };
 
 // The loop's vectors, kept by a solver between its solves so that a steady step allocates
 // nothing (ContactSolver: one instance is not for two threads at once).
 struct GaussSeidelWorkspace {
   std::vector<int> order;
+  SweepPartition partition;  // SolverOptions::sweepPartBlocks
+  // A split sweep's copies of what it reads, in its order (block i of sweepFactors is the
+  // block at position i of `order`).
+  BodySpaceDelassus sweepFactors{0, {}};
+  std::vector<SweepBlock> blocks;
   Eigen::VectorXd u, best, dv;
   Eigen::VectorXd previous, direction, previousDv, directionDv;  // conjugateGradient only
 };

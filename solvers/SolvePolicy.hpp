@@ -104,6 +104,12 @@ struct SolverChoice {
 };
 
 struct SolvePolicy {
+  // [blocks] The World's SolverOptions::sweepPartBlocks: the sweeps of islands of at least
+  // twice this many blocks (contacts and joint rows) are split into parts, so that they can use
+  // the World's threads. Smaller parts give more parallelism and more blocks between parts,
+  // which cost more per visit (docs/tuning.md "Parallel sweeps"); below ~2 000 blocks a sweep is
+  // too short (~0.2 ms) to gain from threads, so smaller islands keep the block order.
+  static constexpr int kSweepPartBlocks = 2048;
   SolverChoice choice;
   // Default tolerance 1e-6 on the common relative residual (far below what changes a trajectory
   // visibly, and reached in a few warm-started sweeps on stacks); at most 200 iterations per
@@ -120,6 +126,7 @@ struct SolvePolicy {
     o.tolerance = 1e-6;
     o.maxIterations = 200;
     o.neverWorseThanStart = true;
+    o.sweepPartBlocks = kSweepPartBlocks;
     return o;
   }
   /// nullopt if usable, else the first problem: an empty chain, a bad option or threshold, and

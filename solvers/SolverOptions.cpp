@@ -23,6 +23,8 @@ std::optional<std::string> validateOptions(const SolverOptions& options) {
     return bad("maxIterations", options.maxIterations, "must be >= 0 (0 = solver default)");
   if (options.stallWindow < 0)
     return bad("stallWindow", options.stallWindow, "must be >= 0 (0 = solver default)");
+  if (options.sweepPartBlocks < 0)
+    return bad("sweepPartBlocks", options.sweepPartBlocks, "must be >= 0 (0 = never)");
   if (!(options.timeLimitSeconds > 0.0))
     return bad("timeLimitSeconds", options.timeLimitSeconds, "must be > 0");
   return std::nullopt;

@@ -4,6 +4,8 @@
 // AcNewtonOptions, ...), passed to the solver's constructor: adding a solver never changes this
 // file (docs/architecture.md golden rule 4: typed value structs, unit, default and reason per
 // field).
+#include <coulomb/solvers/ParallelLoop.hpp>
+
 #include <limits>
 #include <optional>
 #include <string>
@@ -42,6 +44,17 @@ struct SolverOptions {
   // (issue 24: lemke on a cut path, residuals up to 1e13, bodies shot away). Default off, so that
   // a corpus run shows each solver's own answer; on in SolvePolicy::simulationOptions (the World).
   bool neverWorseThanStart = false;
+  // [blocks] A Gauss-Seidel sweep (pgs, bgs and their nncg forms) over at least twice this many
+  // blocks is split into parts of about this many blocks (at most 64; SweepPartition.hpp): the
+  // parts' interiors run at once on the threads of `parallel`, then the blocks between parts,
+  // coloured. The same bits on any number of threads; the split changes the order of the sweep
+  // (its iterates, not the solution), so it is a setting of its own, never a consequence of the
+  // thread count. 0 = never. Default 0 here (a captured problem is solved as before); the World
+  // splits large islands (SolvePolicy::simulationOptions, docs/tuning.md).
+  int sweepPartBlocks = 0;
+  // Threads lent to this solve by the caller (the World passes its executor when
+  // WorldSettings::threads > 1; not saved, not compared). Null: the calling thread only.
+  ParallelLoop* parallel = nullptr;
 };
 
 // The first invalid field, or nullopt.

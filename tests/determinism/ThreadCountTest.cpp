@@ -75,6 +75,17 @@ TEST(ThreadCount, OneLargeIslandIsBitIdenticalForEveryCount) {
   expectSameForEveryCount(scenes::loadBuiltinScene("pyramid_10"), 5);
 }
 
+TEST(ThreadCount, OneIslandsSplitSweepsAreBitIdenticalForEveryCount) {
+  // pyramid_10's 400 contacts in parts of 64 blocks: 6 parts and a coloured boundary, so its
+  // sweeps run on the threads (SolverOptions::sweepPartBlocks; the World's default splits from
+  // 4 096 blocks on). The split is another order than the block order: another trajectory.
+  engine::io::Scene scene = scenes::loadBuiltinScene("pyramid_10");
+  const std::uint64_t blockOrder = runAndHash(scene, 1, 20);
+  scene.settings.solve.options.sweepPartBlocks = 64;
+  expectSameForEveryCount(scene, 20);
+  EXPECT_NE(runAndHash(scene, 1, 20), blockOrder);
+}
+
 TEST(ThreadCount, JointsContactsAndTreesTogetherAreBitIdentical) {
   for (const char* name : {"rope_bridge", "arm_pushing_boxes", "kuka_swing_into_boxes"})
     expectSameForEveryCount(scenes::loadBuiltinScene(name), 30);

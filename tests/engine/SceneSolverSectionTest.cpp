@@ -43,7 +43,7 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
   const engine::io::Scene scene = parse(R"({
       "name": "pgs", "tolerance": 1e-4, "max_iterations": 50, "time_limit": 0.5,
       "warm_start": false, "restitution_threshold": 0.1, "speculative_contacts": false,
-      "speculative_margin": 0.01, "promote_fallbacks": false,
+      "speculative_margin": 0.01, "promote_fallbacks": false, "sweep_part_blocks": 500,
       "penetration": {"method": "baumgarte", "beta": 0.3, "slop": 0.001, "iterations": 7,
                       "solver": "bgs", "tolerance": 1e-5}})",
                                         R"("solver": "ac_newton",)");
@@ -53,6 +53,9 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
   EXPECT_EQ(s.solve.options.maxIterations, 50);
   EXPECT_EQ(s.solve.options.timeLimitSeconds, 0.5);
   EXPECT_FALSE(s.solve.options.useWarmStart);
+  EXPECT_EQ(s.solve.options.sweepPartBlocks, 500);
+  EXPECT_EQ(engine::WorldSettings{}.solve.options.sweepPartBlocks,
+            coulomb::solvers::SolvePolicy::kSweepPartBlocks);
   EXPECT_FALSE(s.solve.promotion.enabled);
   EXPECT_FALSE(engine::WorldSettings{}.solve.promotion.enabled);  // off by default since nncg
   EXPECT_EQ(s.contact.restitutionThreshold, 0.1);
@@ -112,6 +115,8 @@ TEST(SceneSolverSection, BadValuesNameTheJsonPath) {
   EXPECT_NE(errorOf(R"({"warm_start": 1})").find("solver.warm_start: expected true or false"),
             std::string::npos);
   EXPECT_NE(errorOf(R"({"speculative_margin": -0.1})").find("must be >= 0"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"sweep_part_blocks": -5})").find("solver.sweep_part_blocks"),
+            std::string::npos);
   EXPECT_NE(errorOf(R"({"promote_fallbacks": "yes"})")
                 .find("solver.promote_fallbacks: expected true or false"),
             std::string::npos);

@@ -26,4 +26,7 @@ TEST(SolverOptions, NamesTheBadField) {
   o = {};
   o.stallWindow = -1;
   EXPECT_NE(validateOptions(o)->find("stallWindow"), std::string::npos);
+  o = {};
+  o.sweepPartBlocks = -1;
+  EXPECT_NE(validateOptions(o)->find("sweepPartBlocks"), std::string::npos);
 }

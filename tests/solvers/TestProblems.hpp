@@ -1,10 +1,12 @@
 #pragma once
 // Small problems shared by the solver tests (header-only helpers, no tests here).
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
 #include <coulomb/solvers/io/Fc3dText.hpp>
 
 #include <Eigen/Dense>
 
+#include <memory>
 #include <random>
 #include <string>
 
@@ -42,6 +44,50 @@ inline ContactProblem randomMechanical(int contacts, int dofs, double mu, unsign
   if (blockSparse)
     op = DelassusOperator::blockSparse(op.toBlockSparse(std::vector<int>(contacts, 3)));
   return ContactProblem::contacts(op, q, mus, "random");
+}
+
+// A pile-like body-space problem: side x side bodies on a grid, `points` contacts between each
+// body and its right and upper neighbours and between each body of the bottom row and the
+// ground (static: no unknowns). Random J and SPD M^-1 per body; q = J v for a random v, so q is
+// in range(J) and the problem has a solution.
+inline ContactProblem bodyGrid(int side, int points, double mu, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  const int bodies = side * side;
+  std::vector<std::pair<int, int>> pairs;  // (lower body or -1, upper body)
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      const int b = i * side + j;
+      for (int k = 0; k < points; ++k) {
+        if (i == 0) pairs.emplace_back(-1, b);
+        if (j + 1 < side) pairs.emplace_back(b, b + 1);
+        if (i + 1 < side) pairs.emplace_back(b, b + side);
+      }
+    }
+  const int contacts = static_cast<int>(pairs.size());
+  std::vector<Eigen::Matrix<double, 6, 6>> Minv(bodies);
+  for (auto& m : Minv) {
+    Eigen::Matrix<double, 6, 6> L;
+    for (int a = 0; a < 6; ++a)
+      for (int c = 0; c < 6; ++c) L(a, c) = 0.3 * g(rng);
+    m = (L * L.transpose() + Eigen::Matrix<double, 6, 6>::Identity()).inverse();
+  }
+  Eigen::VectorXd v(6 * bodies);
+  for (int k = 0; k < v.size(); ++k) v[k] = g(rng);
+  auto factors = std::make_shared<BodySpaceDelassus>(bodies, std::vector<int>(contacts, 3));
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(3 * contacts);
+  for (int c = 0; c < contacts; ++c)
+    for (const auto& [s, body] : {std::pair{0, pairs[c].first}, std::pair{1, pairs[c].second}}) {
+      if (body < 0) continue;
+      Eigen::Matrix<double, 3, 6> J;
+      for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 6; ++k) J(a, k) = g(rng);
+      const Eigen::Matrix<double, 6, 3> G = Minv[body] * J.transpose();
+      factors->setSide(c, s, body, J, G);
+      q.segment<3>(3 * c) += J * v.segment<6>(6 * body);
+    }
+  return ContactProblem::contacts(DelassusOperator::bodySpace(factors), q,
+                                  std::vector<double>(contacts, mu), "grid");
 }
 
 inline ContactProblem loadFixture(const std::string& name) {
