@@ -2,6 +2,7 @@
 
 #include <coulomb/solvers/CoulombLaw.hpp>
 #include <coulomb/solvers/ParallelLoop.hpp>
+#include <coulomb/solvers/Residual.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -67,7 +68,8 @@ constexpr int kMaxSweepParts = 64;
 // blocks over two threads. How a colour is cut never changes the result (its blocks are
 // independent).
 constexpr int kBlocksPerTask = 128;
-constexpr int kBlocksPerCheck = 1024;  // u = q + J dv of a residual check: ~20 ns per block
+constexpr int kBlocksPerCheck = 1024;            // a piece of a residual check: ~40 ns per block
+constexpr Eigen::Index kEntriesPerPiece = 8192;  // a piece of the loop's vector work
 
 // The split sweep's copies (GaussSeidelWorkspace::blocks, sweepFactors) in the order's order.
 void gatherSweep(const PreparedProblem& p, const std::vector<int>& order,
@@ -157,10 +159,40 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
   Eigen::VectorXd &previous = work.previous, &direction = work.direction;
   Eigen::VectorXd &previousDv = work.previousDv, &directionDv = work.directionDv;
   double previousStepNorm = -1.0;  // ||x_k - x_{k-1}||^2 of the last sweep; < 0: no direction yet
+  // A split sweep spreads the loop's vector work over the threads too: element by element, and
+  // sums in fixed pieces added in order, so that the bits do not depend on the threads. (An
+  // unsplit sweep keeps its plain expressions: its results stay those of the block order.)
+  auto forPieces = [&](Eigen::Index size, Eigen::Index pieceSize, auto&& piece) {
+    const auto pieces = static_cast<std::size_t>((size + pieceSize - 1) / pieceSize);
+    auto task = [&](std::size_t k) {
+      const Eigen::Index begin = static_cast<Eigen::Index>(k) * pieceSize;
+      piece(k, begin, std::min(size, begin + pieceSize));
+    };
+    if (parallel != nullptr && pieces > 1)
+      parallel->forEach(pieces, IndexTask(task));
+    else
+      for (std::size_t k = 0; k < pieces; ++k) task(k);
+    return pieces;
+  };
+  auto assign = [&](Eigen::VectorXd& to, const auto& expression) {  // to = expression, in pieces
+    to.resize(expression.size());
+    forPieces(to.size(), kEntriesPerPiece, [&](std::size_t, Eigen::Index b, Eigen::Index e) {
+      to.segment(b, e - b) = expression.segment(b, e - b);
+    });
+  };
+  std::vector<double>& sums = work.pieceSums;
+  auto sumPieces = [&](std::size_t pieces) {
+    double total = 0.0;
+    for (std::size_t k = 0; k < pieces; ++k) total += sums[k];
+    return total;
+  };
   while (sweep < maxSweeps) {
     if (context.timeUp(report)) break;
     ++sweep;
-    if (cg) {
+    if (cg && split) {
+      assign(previous, r);
+      if (body) assign(previousDv, dv);
+    } else if (cg) {
       previous = r;
       if (body) previousDv = dv;
     }
@@ -240,13 +272,36 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
     // NNCG: the sweep's step g = x_{k+1} - x_k plays -grad f; beta = ||g_{k+1}||^2/||g_k||^2.
     double beta = 0.0;
     if (cg) {
-      const double stepNorm = (r - previous).squaredNorm();
+      double stepNorm = 0.0;
+      if (split) {
+        sums.resize(static_cast<std::size_t>(r.size() / kEntriesPerPiece + 1));
+        stepNorm = sumPieces(forPieces(
+            r.size(), kEntriesPerPiece, [&](std::size_t k, Eigen::Index b, Eigen::Index e) {
+              sums[k] = (r.segment(b, e - b) - previous.segment(b, e - b)).squaredNorm();
+            }));
+      } else {
+        stepNorm = (r - previous).squaredNorm();
+      }
       if (previousStepNorm > 0) beta = stepNorm / previousStepNorm;
       if (!(beta <= 1.0)) beta = 0.0;  // restart: p = 0
       previousStepNorm = stepNorm;
     }
     auto accelerate = [&] {  // x += beta p, then p = x_new - x_old (= beta p + g); p = 0 on restart
       if (!cg) return;
+      if (split) {
+        if (beta > 0) {
+          assign(r, r + beta * direction);
+          if (body) assign(dv, dv + beta * directionDv);
+        }
+        if (beta == 0.0 && sweep > 1) {
+          assign(direction, Eigen::VectorXd::Zero(r.size()));
+          if (body) assign(directionDv, Eigen::VectorXd::Zero(dv.size()));
+        } else {
+          assign(direction, r - previous);
+          if (body) assign(directionDv, dv - previousDv);
+        }
+        return;
+      }
       if (beta > 0) {
         r += beta * direction;
         if (body) dv += beta * directionDv;
@@ -266,18 +321,23 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
       continue;
     }
     double e = 0.0;
-    if (body) {  // u = q + J dv: one pass, dv is current; each block writes its own rows
+    if (body && split) {  // u = q + J dv, then the sum, in pieces of blocks
+      u.resize(p.q.size());
+      sums.resize(static_cast<std::size_t>(nb / kBlocksPerCheck + 1));
+      const std::size_t pieces =
+          forPieces(nb, kBlocksPerCheck, [&](std::size_t k, Eigen::Index first, Eigen::Index last) {
+            for (auto b = static_cast<int>(first); b < last; ++b) {
+              const int off = p.offset[b];
+              for (int a = 0; a < p.sizes[b]; ++a) u[off + a] = p.q[off + a];
+              body->addBlockVelocity(b, dv, u.data() + off);
+            }
+            sums[k] = sweepResidualSquares(p.blocks, static_cast<int>(first),
+                                           static_cast<int>(last), p.offset[first], r, u);
+          });
+      e = std::sqrt(sumPieces(pieces)) / (1.0 + p.qNorm);
+    } else if (body) {  // u = q + J dv: one pass, dv is current
       u = p.q;
-      auto velocities = [&](std::size_t task) {
-        const int begin = static_cast<int>(task) * kBlocksPerCheck;
-        for (int b = begin; b < std::min(begin + kBlocksPerCheck, nb); ++b)
-          body->addBlockVelocity(b, dv, u.data() + p.offset[b]);
-      };
-      const auto tasks = static_cast<std::size_t>((nb + kBlocksPerCheck - 1) / kBlocksPerCheck);
-      if (parallel != nullptr && tasks > 1)
-        parallel->forEach(tasks, IndexTask(velocities));
-      else
-        for (std::size_t t = 0; t < tasks; ++t) velocities(t);
+      for (int b = 0; b < nb; ++b) body->addBlockVelocity(b, dv, u.data() + p.offset[b]);
       e = p.sweepResidualFromVelocity(r, u);
     } else {
       p.velocity(r, u);

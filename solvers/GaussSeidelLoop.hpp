@@ -56,6 +56,7 @@ struct GaussSeidelWorkspace {
   // block at position i of `order`).
   BodySpaceDelassus sweepFactors{0, {}};
   std::vector<SweepBlock> blocks;
+  std::vector<double> pieceSums;  // a split sweep's partial sums
   Eigen::VectorXd u, best, dv;
   Eigen::VectorXd previous, direction, previousDv, directionDv;  // conjugateGradient only
 };

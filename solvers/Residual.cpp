@@ -66,9 +66,14 @@ double residualFromVelocity(const std::vector<ConstraintBlock>& blocks, const Ei
 
 double sweepResidualFromVelocity(const std::vector<ConstraintBlock>& blocks,
                                  const Eigen::VectorXd& r, const Eigen::VectorXd& u) {
+  return std::sqrt(sweepResidualSquares(blocks, 0, static_cast<int>(blocks.size()), 0, r, u));
+}
+
+double sweepResidualSquares(const std::vector<ConstraintBlock>& blocks, int first, int last,
+                            int offset, const Eigen::VectorXd& r, const Eigen::VectorXd& u) {
   double s = 0;
-  int offset = 0;
-  for (const ConstraintBlock& b : blocks) {
+  for (int k = first; k < last; ++k) {
+    const ConstraintBlock& b = blocks[k];
     const double* rb = r.data() + offset;
     const double* ub = u.data() + offset;
     if (b.kind == BlockKind::Contact3D && !b.anisotropic) {
@@ -81,7 +86,7 @@ double sweepResidualFromVelocity(const std::vector<ConstraintBlock>& blocks,
     }
     offset += b.size();
   }
-  return std::sqrt(s);
+  return s;
 }
 
 ResidualValue commonResidual(const ContactProblem& problem, const Eigen::VectorXd& r,

@@ -38,6 +38,10 @@ double residualFromVelocity(const std::vector<ConstraintBlock>& blocks, const Ei
 // residuals are always the exact one above.
 double sweepResidualFromVelocity(const std::vector<ConstraintBlock>& blocks,
                                  const Eigen::VectorXd& r, const Eigen::VectorXd& u);
+// Its sum of squares over blocks [first, last), whose first unknown is at `offset` (the pieces
+// of a split sweep's check, summed in block order by the caller).
+double sweepResidualSquares(const std::vector<ConstraintBlock>& blocks, int first, int last,
+                            int offset, const Eigen::VectorXd& r, const Eigen::VectorXd& u);
 
 // The common residual of r for the problem: computes u = W r + q, then (1.8).
 ResidualValue commonResidual(const ContactProblem& problem, const Eigen::VectorXd& r);
