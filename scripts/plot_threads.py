@@ -6,7 +6,8 @@
 
 Needs matplotlib (Debian: apt-get install python3-matplotlib). One line per scene: the measured
 speed-up at each thread count (markers), Amdahl's estimate from the measured serial fraction
-(dashed) and the bound of islands that are never split (solid) up to 64 threads.
+(dashed) and the bound of the islands, the largest spread over at most its sweep's parts
+(solid), up to 64 threads.
 """
 import argparse
 import sys
@@ -34,10 +35,12 @@ def read(path):
             if header is None or len(fields) < len(header):
                 continue
             row = dict(zip(header, fields))
-            scene = scenes.setdefault(row["scene"], {"measured": [], "p": 0.0, "largest": 0.0})
+            scene = scenes.setdefault(row["scene"],
+                                      {"measured": [], "p": 0.0, "largest": 0.0, "parts": 1.0})
             scene["measured"].append((int(row["threads"]), float(row["speedup"])))
             scene["p"] = float(row["parallel"])
             scene["largest"] = float(row["largest"])
+            scene["parts"] = float(row.get("parts", 1.0))
     return scenes
 
 
@@ -53,10 +56,11 @@ def main():
     fig, ax = plt.subplots(figsize=(7, 4.5), dpi=80)
     for index, (name, s) in enumerate(sorted(scenes.items())):
         colour = f"C{index}"
-        p, largest = s["p"], s["largest"]
+        p, largest, parts = s["p"], s["largest"], s["parts"]
         ax.plot(counts, [1 / ((1 - p) + p / n) for n in counts], "--", color=colour, alpha=0.6)
-        ax.plot(counts, [1 / ((1 - p) + p * max(largest, 1 / n)) for n in counts], "-",
-                color=colour, label=f"{name} (p = {p:.2f}, largest island {largest:.2f})")
+        ax.plot(counts, [1 / ((1 - p) + p * max(largest / min(n, parts), 1 / n)) for n in counts],
+                "-", color=colour,
+                label=f"{name} (p = {p:.2f}, largest island {largest:.2f} in {parts:.0f} parts)")
         xs, ys = zip(*sorted(s["measured"]))
         ax.plot(xs, ys, "o", color=colour, markersize=7)
     ax.set_xscale("log", base=2)

@@ -61,8 +61,6 @@ double projectScalar(const ConstraintBlock& b, double x) {
   }
 }
 
-// At most this many parts (SolverOptions::sweepPartBlocks): enough for 64 threads.
-constexpr int kMaxSweepParts = 64;
 // Boundary blocks of one colour per task: a block costs 50-200 ns, so a task of 128 is long
 // against the task system's hand-over (about a microsecond) yet splits a colour of a few hundred
 // blocks over two threads. How a colour is cut never changes the result (its blocks are
@@ -101,8 +99,7 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
   // Split sweeps (SolverOptions::sweepPartBlocks, SweepPartition.hpp): the parts' interiors,
   // then the boundary colour by colour; segment s of the order is [segmentBegin(s),
   // segmentBegin(s + 1)), the parts first. The shuffle permutes within each segment only.
-  const int partBlocks = context.options().sweepPartBlocks;
-  const int parts = partBlocks > 0 ? std::min(kMaxSweepParts, nb / partBlocks) : 1;
+  const int parts = SweepPartition::partsFor(nb, context.options().sweepPartBlocks);
   const bool split = parts >= 2;
   std::vector<int>& order = work.order;
   SweepPartition& partition = work.partition;

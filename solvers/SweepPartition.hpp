@@ -10,6 +10,7 @@
 // on the problem and the number of parts alone, never on the threads.
 #include <coulomb/solvers/PreparedProblem.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +18,14 @@ namespace coulomb::solvers {
 
 class SweepPartition {
  public:
+  /// The most parts a sweep is split into (SolverOptions::sweepPartBlocks): enough for 64
+  /// threads; a larger problem gets larger parts.
+  static constexpr int kMaxParts = 64;
+  /// The parts of a problem of `blocks` blocks for SolverOptions::sweepPartBlocks (1: unsplit).
+  [[nodiscard]] static int partsFor(int blocks, int partBlocks) {
+    return partBlocks > 0 ? std::clamp(blocks / partBlocks, 1, kMaxParts) : 1;
+  }
+
   /// Splits the blocks of `problem` into `parts` parts (>= 1; 1 gives the block order with no
   /// boundary). Reuses this object's storage.
   void build(const PreparedProblem& problem, int parts);
