@@ -68,7 +68,7 @@ def main():
     ax.set_xticklabels([str(n) for n in counts])
     ax.set_xlabel("threads")
     ax.set_ylabel("speed-up of a step")
-    ax.set_title("measured (dots), islands never split (solid), Amdahl (dashed)")
+    ax.set_title("measured (dots), islands, the largest over its parts (solid), Amdahl (dashed)")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
