@@ -86,6 +86,18 @@ TEST(ThreadCount, OneIslandsSplitSweepsAreBitIdenticalForEveryCount) {
   EXPECT_NE(runAndHash(scene, 1, 20), blockOrder);
 }
 
+TEST(ThreadCount, SplitSweepsInsideParallelIslandsAreBitIdentical) {
+  // Parts of 4 blocks split every island of 8 blocks or more: the sweeps' tasks nest in the
+  // islands' (oneTBB runs them in the same arena).
+  engine::io::Scene scene = towers();
+  scene.settings.solve.options.sweepPartBlocks = 4;
+  scene.settings.solve.choice = solvers::solverChoice("pgs!");  // every island swept
+  expectSameForEveryCount(scene, 60);
+  const std::uint64_t split = runAndHash(scene, 1, 60);
+  scene.settings.solve.options.sweepPartBlocks = 0;
+  EXPECT_NE(runAndHash(scene, 1, 60), split);  // the sweeps were split
+}
+
 TEST(ThreadCount, JointsContactsAndTreesTogetherAreBitIdentical) {
   for (const char* name : {"rope_bridge", "arm_pushing_boxes", "kuka_swing_into_boxes"})
     expectSameForEveryCount(scenes::loadBuiltinScene(name), 30);
