@@ -11,5 +11,9 @@ namespace coulomb::integrators {
 /// tau are the accumulated forces and torques. Static and kinematic bodies are left untouched.
 /// `h` [s] must be finite and > 0 (checked by the caller).
 void predictFreeVelocities(geometry::BodyState& state, const Eigen::Vector3d& gravity, double h);
+/// The same for the bodies [first, last) only: each body on its own, so ranges can run on
+/// different threads (the World's, WorldSettings::threads) with the same results.
+void predictFreeVelocities(geometry::BodyState& state, const Eigen::Vector3d& gravity, double h,
+                           std::size_t first, std::size_t last);
 
 }  // namespace coulomb::integrators

@@ -5,8 +5,12 @@
 namespace coulomb::integrators {
 
 void integratePositions(geometry::BodyState& state, double h) {
+  integratePositions(state, h, 0, state.size());
+}
+
+void integratePositions(geometry::BodyState& state, double h, std::size_t first, std::size_t last) {
   using geometry::MotionType;
-  for (std::size_t i = 0; i < state.size(); ++i) {
+  for (std::size_t i = first; i < last; ++i) {
     if (state.alive[i] == 0 || state.motionTypes[i] == MotionType::Static || state.asleep[i] != 0)
       continue;
     geometry::Pose& pose = state.poses[i];

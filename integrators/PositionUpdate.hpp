@@ -10,5 +10,8 @@
 namespace coulomb::integrators {
 
 void integratePositions(geometry::BodyState& state, double h);
+/// The same for the bodies [first, last) only: each body on its own, so ranges can run on
+/// different threads (the World's, WorldSettings::threads) with the same results.
+void integratePositions(geometry::BodyState& state, double h, std::size_t first, std::size_t last);
 
 }  // namespace coulomb::integrators

@@ -71,6 +71,11 @@ TEST(ThreadCount, SixteenRobotsAreBitIdenticalForEveryCount) {
   expectSameForEveryCount(scenes::loadBuiltinScene("anymal_16"), 20);
 }
 
+TEST(ThreadCount, AThousandFreeBodiesAreIntegratedInRangesWithTheSameBits) {
+  // 1 005 bodies: four ranges of the free bodies' prediction and integration per stage.
+  expectSameForEveryCount(scenes::loadBuiltinScene("box_pile_1000"), 10);
+}
+
 TEST(ThreadCount, OneLargeIslandIsBitIdenticalForEveryCount) {
   expectSameForEveryCount(scenes::loadBuiltinScene("pyramid_10"), 5);
 }
