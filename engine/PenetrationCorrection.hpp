@@ -43,7 +43,7 @@ solvers::BlockSparseMatrix normalNormalBlock(const VelocityProblemNormals& norma
 /// `articulations`: rows on link proxies move their trees' joint positions as well.
 /// `velocityProblem`: the island's velocity problem, whose W_NN is reused when given (else the
 /// normal rows are assembled again). `sweep`: the options the pseudo-solve starts from (the
-/// World's: its coloured sweeps and threads); iterations, tolerance and warm start are `settings`'.
+/// World's: its split sweeps and threads); iterations, tolerance and warm start are `settings`'.
 std::optional<solvers::SolverReport> correctPenetration(
     std::span<const joints::RowBlock> contactBlocks,
     const std::vector<geometry::ContactManifold>& manifolds, const PenetrationSettings& settings,

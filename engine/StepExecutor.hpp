@@ -36,7 +36,7 @@ class StepExecutor final : public solvers::ParallelLoop {
   /// Calls task(i) for every i in [0, count), in any order and on any of the threads, and returns
   /// when all are done; the first exception a task throws is rethrown here.
   void forEach(std::size_t count, geometry::TaskRef task);
-  /// The same for a solver (SolverOptions::parallel: the blocks of one colour of a sweep); called
+  /// The same for a solver (SolverOptions::parallel: the parts of a split sweep); called
   /// from inside a task too (a large island's solve), where oneTBB nests it in the same arena.
   void forEach(std::size_t count, solvers::IndexTask task) override;
 

@@ -45,6 +45,10 @@ void transferPolicy(Ar& ar, solvers::SolvePolicy& p) {
     io(ar, p.options.sweepPartBlocks);
   else if constexpr (Ar::kLoading)
     p.options.sweepPartBlocks = 0;  // the block order those files were written with
+  if (ar.version() >= 9)
+    io(ar, p.options.stickingStart);
+  else if constexpr (Ar::kLoading)
+    p.options.stickingStart = false;  // the starts those files were written with
   solvers::ChooserSettings& c = p.chooser;
   io(ar, c.pileNu);
   io(ar, c.newtonMaxUnknowns);

@@ -40,6 +40,10 @@ class BodySpaceDelassus {
   [[nodiscard]] const std::vector<int>& blockSizes() const { return size_; }
   /// The local body side `side` (0 or 1) of block b acts on; -1 when that side has no unknowns.
   [[nodiscard]] int blockBody(int b, int side) const { return body_[2 * b + side]; }
+  /// Row `row`'s Jacobian on side `side` and the same row's column of M^-1 J^T (6 numbers each:
+  /// linear, angular); zeros on a side left unset.
+  [[nodiscard]] const double* jacobianRow(int row, int side) const { return J(row, side); }
+  [[nodiscard]] const double* inverseMassColumn(int row, int side) const { return G(row, side); }
 
   /// dv = M^-1 J^T x (6 per body: linear, angular).
   void bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd& dv) const;

@@ -92,25 +92,37 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   Eigen::VectorXd &u = work.u, &dv = work.dv, &r = work.r;
   r.setZero(n);
   double e = prepared.residual(r, u, dv);
+  // Projected onto the constraint set, kept when its residual is at most `e` (or below it).
+  auto tryStart = [&](const Eigen::VectorXd& candidate, bool tieKeeps) {
+    Eigen::VectorXd& s = work.s;
+    prepared.fromOriginal(candidate, s);
+    prepared.project(s);
+    Eigen::VectorXd& dvs = work.dvs;
+    const double es = prepared.residual(s, u, dvs);
+    if (es < e || (tieKeeps && es == e)) {
+      r = s;
+      e = es;
+      dv.swap(dvs);
+      return true;
+    }
+    return false;
+  };
   const Eigen::VectorXd* candidate =
       start ? start : (options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr);
   if (candidate) {
-    if (candidate->size() != n || !candidate->allFinite()) {
+    if (candidate->size() != n || !candidate->allFinite())
       report.note("start ignored (wrong size or not finite)");
-    } else {
-      Eigen::VectorXd& s = work.s;
-      prepared.fromOriginal(*candidate, s);
-      prepared.project(s);
-      Eigen::VectorXd& dvs = work.dvs;
-      const double es = prepared.residual(s, u, dvs);
-      if (es <= e) {
-        r = s;
-        e = es;
-        dv.swap(dvs);
-      } else {
-        report.note("warm start ignored: r = 0 has a smaller residual");
-      }
-    }
+    else if (!tryStart(*candidate, true))
+      report.note("warm start ignored: r = 0 has a smaller residual");
+  }
+  // The all-sticking start, when the first attempt's start is not good enough (StickingStart.hpp).
+  if (!start && options.stickingStart && e > options.tolerance) {
+    const BodySpaceDelassus* factors = problem.W.bodySpaceOperator();
+    const Eigen::VectorXd* warm =
+        options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr;
+    if (factors && work.sticking.compute(*factors, problem.q, problem.blocks, warm, work.stick) &&
+        tryStart(work.stick, false))
+      report.note("sticking start");
   }
   Eigen::VectorXd& r0 = work.r0;
   r0 = r;

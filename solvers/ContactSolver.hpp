@@ -12,6 +12,7 @@
 #include <coulomb/solvers/PreparedProblem.hpp>
 #include <coulomb/solvers/SolverOptions.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
+#include <coulomb/solvers/StickingStart.hpp>
 
 #include <Eigen/Core>
 
@@ -61,6 +62,8 @@ class ContactSolver {
     PreparedProblem prepared;
     Eigen::VectorXd u, dv, r, s, dvs, r0;
     Eigen::VectorXd rs, us;  // the start in original variables and its u (never worse than it)
+    StickingStart sticking;  // SolverOptions::stickingStart
+    Eigen::VectorXd stick;
   };
   void run(const ContactProblem& problem, const SolverOptions& options,
            const Eigen::VectorXd* start, SolveOutcome& out, Workspace& work) const;

@@ -156,6 +156,14 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
   Eigen::VectorXd &previous = work.previous, &direction = work.direction;
   Eigen::VectorXd &previousDv = work.previousDv, &directionDv = work.directionDv;
   double previousStepNorm = -1.0;  // ||x_k - x_{k-1}||^2 of the last sweep; < 0: no direction yet
+  if (cg) {  // sized on every call, not on the first momentum step: a steady step allocates nothing
+    previous.resize(r.size());
+    direction.resize(r.size());
+    if (body) {
+      previousDv.resize(dv.size());
+      directionDv.resize(dv.size());
+    }
+  }
   // A split sweep spreads the loop's vector work over the threads too: element by element, and
   // sums in fixed pieces added in order, so that the bits do not depend on the threads. (An
   // unsplit sweep keeps its plain expressions: its results stay those of the block order.)

@@ -1,8 +1,9 @@
 #pragma once
 // Threads a caller lends to one solve (SolverOptions::parallel; the World passes its executor,
 // WorldSettings::threads). A solver uses them only where the result cannot depend on how the work
-// is split: the blocks of one colour of a coloured Gauss-Seidel sweep (SweepColouring.hpp) touch
-// disjoint bodies, so running them on any number of threads gives the bits of the serial sweep.
+// is split: the interiors of a split Gauss-Seidel sweep's parts, then the blocks of one colour of
+// its boundary (SweepPartition.hpp), touch disjoint bodies, so running them on any number of
+// threads gives the bits of the serial sweep; fixed pieces summed in order do the same for sums.
 #include <coulomb/solvers/FunctionRef.hpp>
 
 #include <cstddef>

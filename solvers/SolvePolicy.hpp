@@ -127,6 +127,7 @@ struct SolvePolicy {
     o.maxIterations = 200;
     o.neverWorseThanStart = true;
     o.sweepPartBlocks = kSweepPartBlocks;
+    o.stickingStart = true;
     return o;
   }
   /// nullopt if usable, else the first problem: an empty chain, a bad option or threshold, and

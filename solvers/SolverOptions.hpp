@@ -52,6 +52,13 @@ struct SolverOptions {
   // thread count. 0 = never. Default 0 here (a captured problem is solved as before); the World
   // splits large islands (SolvePolicy::simulationOptions, docs/tuning.md).
   int sweepPartBlocks = 0;
+  // When the start (the better of the projected warm start and r = 0) is above the tolerance and
+  // W is held in body space (a World island), also try the all-sticking start (StickingStart.hpp:
+  // every touching contact stopped, in body space, O(bodies) on stacks) and keep it if its
+  // residual is smaller. A fresh stack is then solved at its start instead of after hundreds of
+  // sweeps. Default off here (a captured problem is solved as before); on in the World
+  // (SolvePolicy::simulationOptions, docs/solvers.md "Sticking start").
+  bool stickingStart = false;
   // Threads lent to this solve by the caller (the World passes its executor when
   // WorldSettings::threads > 1; not saved, not compared). Null: the calling thread only.
   ParallelLoop* parallel = nullptr;

@@ -64,3 +64,34 @@ TEST(NncgColdPyramid, MomentumConvergesWherePlainSweepsDoNot) {
     EXPECT_EQ(again.residual, fast.residual);
   }
 }
+
+// The World's answer to the same first step (SolverOptions::stickingStart, on by default): the
+// all-sticking start is the resting pyramid's exact answer, so no sweep is needed; without it the
+// plan spends its 200 bgs_nncg sweeps and a Newton fallback. Both end within the tolerance.
+TEST(NncgColdPyramid, TheWorldSolvesTheFirstStepAtItsStickingStart) {
+  for (const bool sticking : {true, false}) {
+    engine::io::Scene scene = scenes::loadBuiltinScene("pyramid_10");
+    scene.settings.solve.options.stickingStart = sticking;
+    engine::World world = engine::io::buildWorld(scene);
+    const engine::StepReport& report = world.step(scene.settings.timeStep);
+    const engine::IslandReport* largest = nullptr;
+    for (const engine::IslandReport& island : report.islands)
+      if (!largest || island.unknowns > largest->unknowns) largest = &island;
+    ASSERT_NE(largest, nullptr);
+    ASSERT_EQ(largest->unknowns, 1200);
+    EXPECT_EQ(largest->status, solvers::SolverStatus::Converged) << sticking;
+    EXPECT_LE(largest->solve.residual, 1e-6) << sticking;
+    int sweeps = 0;
+    for (const solvers::SolverReport& attempt : largest->attempts) sweeps += attempt.iterations;
+    if (sticking) {
+      EXPECT_EQ(sweeps, 0);
+      EXPECT_EQ(largest->attempts.size(), 1u);
+      EXPECT_NE(largest->solve.message.find("sticking start"), std::string::npos);
+    } else {
+      EXPECT_GE(sweeps, 200);
+    }
+    // The next step is warm-started everywhere: no sticking start is computed.
+    for (const engine::IslandReport& island : world.step(scene.settings.timeStep).islands)
+      EXPECT_EQ(island.solve.message.find("sticking start"), std::string::npos);
+  }
+}

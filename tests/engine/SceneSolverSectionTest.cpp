@@ -44,6 +44,7 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
       "name": "pgs", "tolerance": 1e-4, "max_iterations": 50, "time_limit": 0.5,
       "warm_start": false, "restitution_threshold": 0.1, "speculative_contacts": false,
       "speculative_margin": 0.01, "promote_fallbacks": false, "sweep_part_blocks": 500,
+      "sticking_start": false,
       "penetration": {"method": "baumgarte", "beta": 0.3, "slop": 0.001, "iterations": 7,
                       "solver": "bgs", "tolerance": 1e-5}})",
                                         R"("solver": "ac_newton",)");
@@ -54,6 +55,8 @@ TEST(SceneSolverSection, EveryKeyReachesTheWorldSettings) {
   EXPECT_EQ(s.solve.options.timeLimitSeconds, 0.5);
   EXPECT_FALSE(s.solve.options.useWarmStart);
   EXPECT_EQ(s.solve.options.sweepPartBlocks, 500);
+  EXPECT_FALSE(s.solve.options.stickingStart);
+  EXPECT_TRUE(engine::WorldSettings{}.solve.options.stickingStart);
   EXPECT_EQ(engine::WorldSettings{}.solve.options.sweepPartBlocks,
             coulomb::solvers::SolvePolicy::kSweepPartBlocks);
   EXPECT_FALSE(s.solve.promotion.enabled);

@@ -157,6 +157,7 @@ TEST(Snapshot, SettingsChangedThroughTheApiAreRestored) {
   policy.chooser.pileNu = 1.25;
   policy.promotion.nearMiss = 3.0;
   policy.options.sweepPartBlocks = 77;
+  policy.options.stickingStart = false;
   original.setSolvePolicy(policy);
   original.setSolverOverride(original.idAt(1), coulomb::solvers::SolverChoice::only("bgs"));
   original.step();
@@ -167,6 +168,7 @@ TEST(Snapshot, SettingsChangedThroughTheApiAreRestored) {
   EXPECT_EQ(restored.settings().solve.chooser, policy.chooser);
   EXPECT_EQ(restored.settings().solve.promotion, policy.promotion);
   EXPECT_EQ(restored.settings().solve.options.sweepPartBlocks, 77);
+  EXPECT_FALSE(restored.settings().solve.options.stickingStart);
   // and the per-body choice: both worlds solve the next step alike
   EXPECT_EQ(original.step().islands.front().reason(), restored.step().islands.front().reason());
   EXPECT_EQ(original.stateHash(), restored.stateHash());

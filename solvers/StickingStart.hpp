@@ -1,0 +1,75 @@
+#pragma once
+// The all-sticking start of a body-space problem (docs/solvers.md "Sticking start"): the impulses
+// that stop every active contact (touching, approaching or loaded in the last step) and satisfy
+// every equality, bounded and active unilateral row, u = W r + q = 0 on those rows, as if every
+// such contact stuck. On a resting stack that is the exact answer, which Gauss-Seidel reaches only
+// after hundreds of sweeps from r = 0 (the load must travel through every layer) and Newton
+// after tens of iterations (pyramid_10's first step: 0 sweeps instead of 200 bgs_nncg sweeps and
+// a Newton fallback). Elsewhere it is one more start candidate: the solver projects it onto the
+// cones and keeps it only if its residual beats the warm start's and r = 0's.
+//
+// W = J M^-1 J^T has rank at most 6 x bodies while it has 3 x contacts rows (four coplanar points
+// per face): the rows are solved in body space, never in W's size. With P = J^T J and
+// Q = M^-1 J^T J M^-1 (both 6 x 6 blocks on bodies that share a row, from the factors J and
+// G = M^-1 J^T the operator already holds):
+//   f = -Q^-1 (M^-1 J^T q)     the bodies' impulses that make J dv = -q (least squares),
+//   r =  J P^-1 f              the row impulses of least norm with J^T r = f,
+// so that dv = M^-1 J^T r gives u = q + J dv = 0 when the rows can all be met; redundant rows share
+// the load evenly (least norm). This is exact when every body of the island is held in all six
+// directions by the stopped rows (stacks, pyramids and piles at rest); a body left free in some
+// direction (a ball on a plane) gets a least-squares approximation, which the residual test may
+// reject. Both matrices get the same small multiple of the identity (kRegularization of their
+// mean diagonal). Two factorizations of one pattern (SparseLdlt, analysed once per contact
+// graph), O(bodies) on a stack; 2.4 ms for the 211 boxes of pyramid_20 (docs/benchmarks.md).
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
+#include <coulomb/solvers/ContactProblem.hpp>
+#include <coulomb/solvers/direct/SparseLdlt.hpp>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace coulomb::solvers {
+
+class StickingStart {
+ public:
+  // [-] Added to P and Q's diagonals, relative to their mean diagonal. The start's residual on a
+  // resting stack is about 1e3 times this (P's conditioning grows with the stack's height): 1e-9
+  // to 2e-7 on the towers and pyramids, below the World's tolerance of 1e-6; 1e-10 gave 2e-7 to
+  // 7e-7, 1e-14 left round-off in the bodies' free directions.
+  static constexpr double kRegularization = 1e-12;
+
+  /// r (resized to W.size()) from W's factors, q and the blocks (W's partition). The rows stopped
+  /// are the active ones of the chooser (docs/solvers.md): equality and bounded rows, and contacts
+  /// and unilateral rows that approach or rest (q_N <= 0) or carried load in the last step
+  /// (`warmStart`, may be null: r_N > 0; a resting contact's q_N flickers around 0 by round-off
+  /// and drift). The others get 0; r is not projected onto the cones. False when no row is
+  /// selected or a factorization fails (r is then unusable).
+  bool compute(const BodySpaceDelassus& W, const Eigen::VectorXd& q,
+               const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd* warmStart,
+               Eigen::VectorXd& r);
+
+ private:
+  // Whether block b is stopped, and its body pair's index in pairs_ (-1: one side or one body).
+  // Computed when asked, not stored per block: a steady step allocates nothing even when a new
+  // manifold point makes the island one block larger than ever before.
+  [[nodiscard]] bool selected(const BodySpaceDelassus& W, int b) const;
+  [[nodiscard]] int pairOf(const BodySpaceDelassus& W, int b) const;
+  void buildPattern(const BodySpaceDelassus& W);
+  void accumulate(const BodySpaceDelassus& W, bool inverseMassWeighted, std::vector<double>& out);
+  [[nodiscard]] int diagonalSlot(int body, int i, int j) const;  // i >= j
+  [[nodiscard]] int pairSlot(int pair, int i, int j) const;
+
+  const Eigen::VectorXd* q_ = nullptr;  // the problem being started (during compute only)
+  const std::vector<ConstraintBlock>* blocks_ = nullptr;
+  const Eigen::VectorXd* warmStart_ = nullptr;
+  std::vector<long long> pairs_;  // (higher body, lower body) of coupled bodies, sorted
+  std::vector<int> rows_, cols_;  // the pattern of P and Q (lower triangle)
+  std::vector<double> p_, qm_;    // their values in the pattern's order
+  std::vector<Eigen::Matrix<double, 6, 6>> diagonal_, coupling_;  // per body, per pair
+  SparseLdlt ldlt_;
+  Eigen::VectorXd rhs_, f_, x_;
+  int bodies_ = 0;
+};
+
+}  // namespace coulomb::solvers

@@ -1,0 +1,133 @@
+// The all-sticking start (StickingStart.hpp, docs/solvers.md "Sticking start") against the statics
+// of a resting tower: each of the four corner points under box k carries a quarter of the weight
+// impulse of the boxes above it and of box k, no tangential impulse, and every contact stops
+// (u = W r + q = 0). A contact moving apart gets nothing; a start that the cone rejects is not
+// kept; a solver started from it on a resting tower ends at its start.
+#include <gtest/gtest.h>
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
+#include <coulomb/solvers/ContactProblem.hpp>
+#include <coulomb/solvers/StickingStart.hpp>
+#include <coulomb/solvers/bgs/BgsSolver.hpp>
+
+#include <Eigen/Geometry>
+
+#include <memory>
+#include <vector>
+
+using namespace coulomb::solvers;
+
+namespace {
+
+constexpr double kMass = 2.0, kHalf = 0.5, kGravity = 9.81, kStep = 0.01;
+
+// `boxes` unit boxes (mass 2 kg) stacked on the ground, four corner contacts per face, normal +z
+// from the lower body (side 0; the ground is static) to the upper (side 1); q = J v* with
+// v* = (0, 0, -g h) for every box. `lateral` adds a sideways velocity to the top box's v*.
+ContactProblem tower(int boxes, double mu, double lateral = 0.0) {
+  const int contacts = 4 * boxes;
+  auto factors = std::make_shared<BodySpaceDelassus>(boxes, std::vector<int>(contacts, 3));
+  const double inertia = kMass * (2 * kHalf) * (2 * kHalf) / 6.0;  // a cube about its centre
+  Eigen::Matrix<double, 6, 6> inverseMass = Eigen::Matrix<double, 6, 6>::Zero();
+  inverseMass.topLeftCorner<3, 3>().diagonal().setConstant(1.0 / kMass);
+  inverseMass.bottomRightCorner<3, 3>().diagonal().setConstant(1.0 / inertia);
+  std::vector<Eigen::Matrix<double, 6, 1>> freeVelocity(boxes, Eigen::Matrix<double, 6, 1>::Zero());
+  for (auto& v : freeVelocity) v[2] = -kGravity * kStep;
+  freeVelocity.back()[0] = lateral;
+  const Eigen::Vector3d n(0, 0, 1), t1(1, 0, 0), t2(0, 1, 0);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(3 * contacts);
+  for (int k = 0; k < boxes; ++k)
+    for (int corner = 0; corner < 4; ++corner) {
+      const int c = 4 * k + corner;
+      const double x = (corner & 1) ? kHalf : -kHalf, y = (corner & 2) ? kHalf : -kHalf;
+      for (int side = 0; side < 2; ++side) {
+        const int body = side == 1 ? k : k - 1;  // the box above, or the one below (ground: -1)
+        if (body < 0) continue;
+        const Eigen::Vector3d arm(x, y, side == 1 ? -kHalf : kHalf);  // from the body's centre
+        const double sign = side == 1 ? 1.0 : -1.0;
+        Eigen::Matrix<double, 3, 6> J;
+        int row = 0;
+        for (const Eigen::Vector3d& d : {n, t1, t2}) {
+          J.block<1, 3>(row, 0) = sign * d.transpose();
+          J.block<1, 3>(row, 3) = sign * arm.cross(d).transpose();
+          ++row;
+        }
+        factors->setSide(c, side, body, J, inverseMass * J.transpose());
+        q.segment<3>(3 * c) += J * freeVelocity[static_cast<std::size_t>(body)];
+      }
+    }
+  return ContactProblem::contacts(DelassusOperator::bodySpace(factors), q,
+                                  std::vector<double>(contacts, mu), "tower");
+}
+
+}  // namespace
+
+TEST(StickingStart, ATowerAtRestCarriesEachBoxsWeightEvenlyOnItsFourCorners) {
+  for (const int boxes : {1, 3, 10}) {
+    const ContactProblem p = tower(boxes, 0.5);
+    StickingStart sticking;
+    Eigen::VectorXd r;
+    ASSERT_TRUE(sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr, r));
+    for (int k = 0; k < boxes; ++k)
+      for (int corner = 0; corner < 4; ++corner) {
+        const int c = 4 * k + corner;
+        const double expected = (boxes - k) * kMass * kGravity * kStep / 4.0;
+        // The regularization's bias grows with the tower's height (P's conditioning): 1e-7 of
+        // the load on 10 boxes, far below the solves' tolerances (1e-6 in the World).
+        EXPECT_NEAR(r[3 * c], expected, 1e-6 * expected) << boxes << " boxes, contact " << c;
+        EXPECT_NEAR(r[3 * c + 1], 0.0, 1e-10);
+        EXPECT_NEAR(r[3 * c + 2], 0.0, 1e-10);
+      }
+    Eigen::VectorXd u;
+    p.W.velocity(r, p.q, u);
+    EXPECT_LT(u.lpNorm<Eigen::Infinity>(), 1e-7 * p.q.lpNorm<Eigen::Infinity>()) << boxes;
+  }
+}
+
+TEST(StickingStart, AContactMovingApartGetsNothing) {
+  ContactProblem p = tower(2, 0.5);
+  for (int c = 4; c < 8; ++c) p.q[3 * c] = 0.1;  // the top box leaves the bottom one
+  StickingStart sticking;
+  Eigen::VectorXd r;
+  ASSERT_TRUE(sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr, r));
+  for (int c = 4; c < 8; ++c) EXPECT_EQ(r.segment<3>(3 * c).norm(), 0.0);
+  for (int c = 0; c < 4; ++c)  // the bottom box alone on the ground
+    EXPECT_NEAR(r[3 * c], kMass * kGravity * kStep / 4.0, 1e-9);
+  for (int c = 0; c < 8; ++c) p.q[3 * c] = 0.1;
+  EXPECT_FALSE(
+      sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr, r));  // nothing touches
+}
+
+TEST(StickingStart, ASolverStartsFromItOnAFreshTowerAndEndsThere) {
+  const ContactProblem p = tower(10, 0.5);
+  SolverOptions options;
+  options.tolerance = 1e-8;
+  options.stickingStart = true;
+  const SolveOutcome with = BgsSolver().solve(p, options);
+  EXPECT_EQ(with.report.status, SolverStatus::Converged);
+  EXPECT_EQ(with.report.iterations, 0);
+  EXPECT_NE(with.report.message.find("sticking start"), std::string::npos);
+  options.stickingStart = false;
+  const SolveOutcome without = BgsSolver().solve(p, options);
+  EXPECT_GT(without.report.iterations, 50);  // the load travels up one layer per sweep at best
+  for (int k = 0; k < 10; ++k) {             // each face carries the weight above it
+    double load = 0.0;
+    for (int c = 4 * k; c < 4 * k + 4; ++c) load += with.impulses[3 * c];
+    const double weight = (10 - k) * kMass * kGravity * kStep;
+    EXPECT_NEAR(load, weight, 1e-6 * weight) << k;
+  }
+}
+
+TEST(StickingStart, AStartOutsideTheConesIsOnlyACandidate) {
+  // The top box slides: sticking it needs a tangential impulse beyond mu N. The solver projects
+  // that start; it still converges, to a sliding answer with |r_T| = mu r_N on the top contacts.
+  const ContactProblem p = tower(2, 0.2, 1.0);
+  SolverOptions options;
+  options.tolerance = 1e-10;
+  options.stickingStart = true;
+  const SolveOutcome out = BgsSolver().solve(p, options);
+  ASSERT_EQ(out.report.status, SolverStatus::Converged);
+  for (int c = 4; c < 8; ++c) {
+    const Eigen::Vector3d rc = out.impulses.segment<3>(3 * c);
+    EXPECT_NEAR(rc.tail<2>().norm(), 0.2 * rc[0], 1e-8) << c;
+  }
+}
