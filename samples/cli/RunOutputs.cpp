@@ -18,11 +18,13 @@ nlohmann::json finiteOrNull(double value) {
 }
 
 nlohmann::json attemptJson(const solvers::SolverReport& r) {
-  return {{"solver", r.solver},
-          {"status", solvers::statusName(r.status)},
-          {"iterations", r.iterations},
-          {"seconds", r.seconds},
-          {"residual", finiteOrNull(r.residual)}};
+  nlohmann::json attempt = {{"solver", r.solver},
+                            {"status", solvers::statusName(r.status)},
+                            {"iterations", r.iterations},
+                            {"seconds", r.seconds},
+                            {"residual", finiteOrNull(r.residual)}};
+  if (!r.message.empty()) attempt["note"] = r.message;  // e.g. "sticking start", a stall
+  return attempt;
 }
 
 nlohmann::json islandJson(const engine::IslandReport& island) {

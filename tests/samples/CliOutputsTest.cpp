@@ -133,6 +133,26 @@ TEST_F(CliOutputs, RunWritesContactsAndStatsWithExpectedColumnsAndSaneNumbers) {
   EXPECT_EQ(stats.at("solver"), "pgs");
 }
 
+// The stats say which start a solve kept: a fresh pyramid's first step is solved at its sticking
+// start (docs/solvers.md), the next one from its warm start.
+TEST_F(CliOutputs, StatsNameTheStickingStart) {
+  const CommandResult r = runCoulomb("run pyramid_10 --steps 2 --stats " + path("stats.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream statsFile(path("stats.json"));
+  const nlohmann::json stats = nlohmann::json::parse(statsFile);
+  auto largestFirstAttempt = [&](int step) {
+    const nlohmann::json* largest = nullptr;
+    for (const auto& island : stats.at("per_step").at(step).at("islands"))
+      if (!largest || island.at("unknowns") > largest->at("unknowns")) largest = &island;
+    return largest->at("attempts").at(0);
+  };
+  const nlohmann::json first = largestFirstAttempt(0);
+  EXPECT_EQ(first.at("iterations"), 0);
+  EXPECT_NE(first.value("note", std::string()).find("sticking start"), std::string::npos);
+  EXPECT_EQ(largestFirstAttempt(1).value("note", std::string()).find("sticking start"),
+            std::string::npos);
+}
+
 TEST_F(CliOutputs, ComparePrintsOneRowPerSolver) {
   const std::string scene = writeScene(0.5);
   const CommandResult r =
