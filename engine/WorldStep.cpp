@@ -203,11 +203,9 @@ void World::solveIsland(IslandWork& island) {
   if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
   island.plan.options.parallel = sweepOptions().parallel;
   // The all-sticking start is for islands with rows the last step did not have (a fresh stack, a
-  // box landing): a warm-started island is cheaper to finish from its warm start.
-  island.plan.options.stickingStart =
-      island.plan.options.stickingStart &&
-      std::any_of(island.rows.blocks.begin(), island.rows.blocks.end(),
-                  [](const joints::RowBlock& b) { return b.warmStart.size() != b.rows(); });
+  // box landing), which the assembler gives no warm start: a warm-started island is cheaper to
+  // finish from its warm start.
+  island.plan.options.stickingStart = island.plan.options.stickingStart && !problem.warmStart;
   solvers::solveWithFallback(problem, island.plan, registry_, island.solvers, island.outcome);
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);

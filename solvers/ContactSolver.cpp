@@ -107,8 +107,9 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     }
     return false;
   };
-  const Eigen::VectorXd* candidate =
-      start ? start : (options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr);
+  const Eigen::VectorXd* warm =
+      options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr;
+  const Eigen::VectorXd* candidate = start ? start : warm;
   if (candidate) {
     if (candidate->size() != n || !candidate->allFinite())
       report.note("start ignored (wrong size or not finite)");
@@ -118,8 +119,6 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // The all-sticking start, when the first attempt's start is not good enough (StickingStart.hpp).
   if (!start && options.stickingStart && e > options.tolerance) {
     const BodySpaceDelassus* factors = problem.W.bodySpaceOperator();
-    const Eigen::VectorXd* warm =
-        options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr;
     if (factors && work.sticking.compute(*factors, problem.q, problem.blocks, warm, work.stick) &&
         tryStart(work.stick, false))
       report.note("sticking start");
