@@ -202,10 +202,6 @@ void World::solveIsland(IslandWork& island) {
               island.plan);
   if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
   island.plan.options.parallel = sweepOptions().parallel;
-  // The all-sticking start is for islands with rows the last step did not have (a fresh stack, a
-  // box landing), which the assembler gives no warm start: a warm-started island is cheaper to
-  // finish from its warm start.
-  island.plan.options.stickingStart = island.plan.options.stickingStart && !problem.warmStart;
   solvers::solveWithFallback(problem, island.plan, registry_, island.solvers, island.outcome);
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <sstream>
+#include <string_view>
 
 namespace coulomb::solvers {
 
@@ -116,35 +117,71 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     else if (!tryStart(*candidate, true))
       report.note("warm start ignored: r = 0 has a smaller residual");
   }
-  // The all-sticking start, when the first attempt's start is not good enough (StickingStart.hpp).
-  if (!start && options.stickingStart && e > options.tolerance) {
-    const BodySpaceDelassus* factors = problem.W.bodySpaceOperator();
-    if (factors && work.sticking.compute(*factors, problem.q, problem.blocks, warm, work.stick) &&
-        tryStart(work.stick, false))
-      report.note("sticking start");
-  }
+  // The all-sticking start (StickingStart.hpp). Without a warm start for every row (a fresh
+  // stack, a box landing) it is tried before the solver; with one it is a restart, tried only if
+  // a body-space solver has not converged after kStickingRestartSweeps sweeps (ContactSolver.hpp).
+  const BodySpaceDelassus* factors = problem.W.bodySpaceOperator();
+  const bool sticking = !start && options.stickingStart && factors != nullptr;
+  StickingStart& stick = options.stickingWorkspace ? *options.stickingWorkspace : work.sticking;
+  // One note for both uses, short enough to need no heap: after sweeps (iterations > 0 with a
+  // warm start) it was a restart.
+  constexpr std::string_view kStickingNote = "sticking start";
+  if (sticking && !warm && e > options.tolerance &&
+      stick.compute(*factors, problem.q, problem.blocks, nullptr) && tryStart(stick.start(), false))
+    report.note(kStickingNote);
+  const bool restart =
+      sticking && warm && worksInBodySpace() && options.maxIterations > kStickingRestartSweeps;
   Eigen::VectorXd& r0 = work.r0;
   r0 = r;
-  if (e <= options.tolerance) {
-    report.status = SolverStatus::Converged;
-    report.nativeResidual = e;
-    report.nativeResidualName = "common residual of the start";
-  } else {
+  // The algorithm from r (whose residual is e and body velocities dv), within `runOptions`.
+  auto runFrom = [&](const SolverOptions& runOptions) {
     prepared.start.known = true;
     prepared.start.r = r;
     prepared.start.dv = dv;
     prepared.start.residual = e;
+    const Eigen::VectorXd& from = prepared.start.r;
     try {
-      solvePrepared(prepared, context, r, report);
+      solvePrepared(prepared, context.withOptions(runOptions), r, report);
     } catch (const std::exception& ex) {
       report.status = SolverStatus::NumericalFailure;
       report.note(std::string("exception: ") + ex.what());
-      r = r0;
+      r = from;
     }
     if (!r.allFinite()) {
       report.status = SolverStatus::NumericalFailure;
       report.note("non-finite iterate replaced by the start");
-      r = r0;
+      r = from;
+    }
+  };
+  if (e <= options.tolerance) {
+    report.status = SolverStatus::Converged;
+    report.nativeResidual = e;
+    report.nativeResidualName = "common residual of the start";
+  } else if (!restart) {
+    runFrom(options);
+  } else {
+    SolverOptions firstOptions = options;
+    firstOptions.maxIterations = kStickingRestartSweeps;
+    runFrom(firstOptions);
+    const bool unfinished =
+        report.status == SolverStatus::MaxIterations && !report.timeLimitReached;
+    if (unfinished) {
+      const int used = report.iterations;
+      e = prepared.residual(r, u, dv);
+      // The iterate takes the warm start's place in choosing the stopped contacts: those it
+      // loads. It is in the problem's variables: body space is kept only for problems that
+      // PreparedProblem does not rescale (no anisotropic cone).
+      if (stick.compute(*factors, problem.q, problem.blocks, &r) && tryStart(stick.start(), false))
+        report.note(kStickingNote);
+      SolverOptions restOptions = options;
+      restOptions.maxIterations = options.maxIterations - used;
+      if (e <= options.tolerance) {
+        report.status = SolverStatus::Converged;
+        report.nativeResidual = e;
+      } else {
+        runFrom(restOptions);
+        report.iterations += used;
+      }
     }
   }
   prepared.toOriginal(r, out.impulses);

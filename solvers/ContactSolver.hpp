@@ -36,6 +36,15 @@ class ContactSolver {
     return std::nullopt;
   }
 
+  // [sweeps] With SolverOptions::stickingStart and a warm start, a body-space solver (Gauss-Seidel)
+  // that has not converged after this many sweeps tries the all-sticking start and continues from
+  // it when its residual is smaller. A warm-started resting stack either converges in one or two
+  // sweeps (the warm start already carries the load) or needs tens to hundreds (the load has to
+  // move through the stack, one layer per sweep, which the sticking start does at once); after two
+  // sweeps the restart wastes little. Measured on pyramid_20 and pyramid_10 against 1 and 3
+  // (docs/benchmarks.md "Sticking restart").
+  static constexpr int kStickingRestartSweeps = 2;
+
   // True for solvers whose solvePrepared() works on PreparedProblem::bodySpace (W never formed).
   [[nodiscard]] virtual bool worksInBodySpace() const { return false; }
 
@@ -62,8 +71,7 @@ class ContactSolver {
     PreparedProblem prepared;
     Eigen::VectorXd u, dv, r, s, dvs, r0;
     Eigen::VectorXd rs, us;  // the start in original variables and its u (never worse than it)
-    StickingStart sticking;  // SolverOptions::stickingStart
-    Eigen::VectorXd stick;
+    StickingStart sticking;  // SolverOptions::stickingStart, unless a workspace is lent
   };
   void run(const ContactProblem& problem, const SolverOptions& options,
            const Eigen::VectorXd* start, SolveOutcome& out, Workspace& work) const;

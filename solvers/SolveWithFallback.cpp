@@ -75,6 +75,7 @@ void solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,
     }
     // The time limit is for the whole plan: each attempt gets what is left.
     SolverOptions options = plan.optionsFor(attempt);
+    if (!options.stickingWorkspace) options.stickingWorkspace = &instances.stickingWorkspace();
     const double used =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (used >= options.timeLimitSeconds && haveBest) break;

@@ -37,10 +37,13 @@ class SolverInstances {
 
   /// An outcome kept for its storage: each attempt is solved into it (solveWithFallback).
   SolveOutcome& attemptOutcome() { return attempt_; }
+  /// The sticking start's workspace of this island's attempts (SolverOptions::stickingWorkspace).
+  StickingStart& stickingWorkspace() { return sticking_; }
 
  private:
   std::vector<std::pair<std::string, std::unique_ptr<ContactSolver>>> made_;
   SolveOutcome attempt_;
+  StickingStart sticking_;
 };
 
 PlanOutcome solveWithFallback(const ContactProblem& problem, const SolvePlan& plan,

@@ -12,6 +12,8 @@
 
 namespace coulomb::solvers {
 
+class StickingStart;
+
 struct SolverOptions {
   // [-] Target of the common relative residual e_rel (docs/solver-derivations.md (1.8)). Default
   // 1e-8: the corpus target; a simulation step is visually exact far above it (1e-4..1e-6 are
@@ -52,16 +54,23 @@ struct SolverOptions {
   // thread count. 0 = never. Default 0 here (a captured problem is solved as before); the World
   // splits large islands (SolvePolicy::simulationOptions, docs/tuning.md).
   int sweepPartBlocks = 0;
-  // When the start (the better of the projected warm start and r = 0) is above the tolerance and
-  // W is held in body space (a World island), also try the all-sticking start (StickingStart.hpp:
-  // every touching contact stopped, in body space, O(bodies) on stacks) and keep it if its
-  // residual is smaller. A fresh stack is then solved at its start instead of after hundreds of
-  // sweeps. Default off here (a captured problem is solved as before); on in the World
+  // The all-sticking start (StickingStart.hpp: every touching contact stopped, in body space,
+  // O(bodies) on stacks) when W is held in body space (a World island): tried before the solver
+  // when the problem has no warm start (a fresh stack, a landing box) and the start is above the
+  // tolerance, and as a restart when a warm-started Gauss-Seidel solve has not converged after
+  // ContactSolver::kStickingRestartSweeps sweeps; kept only when its residual is smaller. A
+  // resting stack is then solved at its start instead of after hundreds of sweeps. Default off
+  // here (a captured problem is solved as before); on in the World
   // (SolvePolicy::simulationOptions, docs/solvers.md "Sticking start").
   bool stickingStart = false;
   // Threads lent to this solve by the caller (the World passes its executor when
   // WorldSettings::threads > 1; not saved, not compared). Null: the calling thread only.
   ParallelLoop* parallel = nullptr;
+  // The sticking start's workspace lent by the caller (solveWithFallback lends its
+  // SolverInstances' one, shared by the attempts of an island: its ordering of the contact graph
+  // carries over from the step that computed it to the solver instance that needs it next; not
+  // saved, not compared). Null: the solver's own.
+  StickingStart* stickingWorkspace = nullptr;
 };
 
 // The first invalid field, or nullopt.

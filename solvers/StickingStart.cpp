@@ -5,9 +5,6 @@
 namespace coulomb::solvers {
 namespace {
 
-constexpr int kDiagonalEntries = 21;  // lower triangle of a 6 x 6 block
-constexpr int kPairEntries = 36;
-
 long long pairKey(int a, int b) {
   return (static_cast<long long>(std::max(a, b)) << 32) | static_cast<long long>(std::min(a, b));
 }
@@ -39,42 +36,17 @@ int StickingStart::pairOf(const BodySpaceDelassus& W, int b) const {
                           pairs_.begin());
 }
 
-int StickingStart::diagonalSlot(int body, int i, int j) const {
-  return kDiagonalEntries * body + i * (i + 1) / 2 + j;
-}
-
-int StickingStart::pairSlot(int pair, int i, int j) const {
-  return kDiagonalEntries * bodies_ + kPairEntries * pair + 6 * i + j;
-}
-
 void StickingStart::buildPattern(const BodySpaceDelassus& W) {
   bodies_ = W.bodyCount();
-  const std::size_t entries = static_cast<std::size_t>(kDiagonalEntries) * bodies_ +
-                              static_cast<std::size_t>(kPairEntries) * pairs_.size();
-  rows_.resize(entries);
-  cols_.resize(entries);
-  for (int a = 0; a < bodies_; ++a)
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j <= i; ++j) {
-        rows_[diagonalSlot(a, i, j)] = 6 * a + i;
-        cols_[diagonalSlot(a, i, j)] = 6 * a + j;
-      }
-  for (std::size_t p = 0; p < pairs_.size(); ++p) {
-    const int high = static_cast<int>(pairs_[p] >> 32);
-    const int low = static_cast<int>(pairs_[p] & 0xffffffffLL);
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) {
-        rows_[pairSlot(static_cast<int>(p), i, j)] = 6 * high + i;
-        cols_[pairSlot(static_cast<int>(p), i, j)] = 6 * low + j;
-      }
-  }
-  if (!ldlt_.analyzed(6 * bodies_, rows_, cols_)) ldlt_.analyze(6 * bodies_, rows_, cols_);
+  pattern_.resize(pairs_.size());
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    pattern_[p] = {static_cast<int>(pairs_[p] >> 32), static_cast<int>(pairs_[p] & 0xffffffffLL)};
+  if (!ldlt_.analyzed(bodies_, pattern_)) ldlt_.analyze(bodies_, pattern_);
 }
 
-void StickingStart::accumulate(const BodySpaceDelassus& W, bool inverseMassWeighted,
-                               std::vector<double>& out) {
-  // Sums of outer products in full 6 x 6 blocks (fixed-size, vectorized), then their lower
-  // triangles in the pattern's order.
+void StickingStart::accumulate(const BodySpaceDelassus& W, bool inverseMassWeighted) {
+  // Sums of outer products in 6 x 6 blocks: per body on the diagonal, per coupled pair
+  // (higher body, lower body) below it.
   using Block6 = Eigen::Matrix<double, 6, 6>;
   diagonal_.assign(bodies_, Block6::Zero());
   coupling_.assign(pairs_.size(), Block6::Zero());
@@ -104,19 +76,13 @@ void StickingStart::accumulate(const BodySpaceDelassus& W, bool inverseMassWeigh
   double trace = 0.0;
   for (const Block6& d : diagonal_) trace += d.trace();
   const double shift = kRegularization * trace / (6.0 * bodies_);
-  out.resize(rows_.size());
-  for (int a = 0; a < bodies_; ++a)
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j <= i; ++j)
-        out[diagonalSlot(a, i, j)] = diagonal_[a](i, j) + (i == j ? shift : 0.0);
-  for (std::size_t p = 0; p < pairs_.size(); ++p)
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) out[pairSlot(static_cast<int>(p), i, j)] = coupling_[p](i, j);
+  for (Block6& d : diagonal_) d.diagonal().array() += shift;
 }
 
 bool StickingStart::compute(const BodySpaceDelassus& W, const Eigen::VectorXd& q,
                             const std::vector<ConstraintBlock>& blocks,
-                            const Eigen::VectorXd* warmStart, Eigen::VectorXd& r) {
+                            const Eigen::VectorXd* warmStart) {
+  Eigen::VectorXd& r = start_;
   const int blockCount = W.blockCount();
   r.setZero(W.size());
   if (W.bodyCount() == 0 || static_cast<int>(blocks.size()) != blockCount || q.size() != W.size())
@@ -157,12 +123,12 @@ bool StickingStart::compute(const BodySpaceDelassus& W, const Eigen::VectorXd& q
     const double* g = W.inverseMassColumn(row, side);
     for (int c = 0; c < 6; ++c) rhs_[6 * body + c] -= g[c] * q[row];
   });
-  accumulate(W, true, qm_);
-  if (!ldlt_.factorize(qm_)) return false;
+  accumulate(W, true);
+  if (!ldlt_.factorize(diagonal_, coupling_)) return false;
   ldlt_.solve(rhs_, f_);
   // r = J P^-1 f: the least-norm row impulses with J^T r = f.
-  accumulate(W, false, p_);
-  if (!ldlt_.factorize(p_)) return false;
+  accumulate(W, false);
+  if (!ldlt_.factorize(diagonal_, coupling_)) return false;
   ldlt_.solve(f_, x_);
   forSelectedSides([&](int row, int side, int body) {
     const double* j = W.jacobianRow(row, side);

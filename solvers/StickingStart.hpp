@@ -19,14 +19,15 @@
 // directions by the stopped rows (stacks, pyramids and piles at rest); a body left free in some
 // direction (a ball on a plane) gets a least-squares approximation, which the residual test may
 // reject. Both matrices get the same small multiple of the identity (kRegularization of their
-// mean diagonal). Two factorizations of one pattern (SparseLdlt, analysed once per contact
-// graph), O(bodies) on a stack; 2.4 ms for the 211 boxes of pyramid_20 (docs/benchmarks.md).
+// mean diagonal). Two factorizations of one pattern by 6 x 6 blocks (BlockLdlt, analysed once per
+// contact graph), O(bodies) on a stack (pyramid_20's 211 boxes: docs/benchmarks.md).
 #include <coulomb/solvers/BodySpaceDelassus.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
-#include <coulomb/solvers/direct/SparseLdlt.hpp>
+#include <coulomb/solvers/direct/BlockLdlt.hpp>
 
 #include <Eigen/Core>
 
+#include <utility>
 #include <vector>
 
 namespace coulomb::solvers {
@@ -39,15 +40,17 @@ class StickingStart {
   // 7e-7, 1e-14 left round-off in the bodies' free directions.
   static constexpr double kRegularization = 1e-12;
 
-  /// r (resized to W.size()) from W's factors, q and the blocks (W's partition). The rows stopped
-  /// are the active ones of the chooser (docs/solvers.md): equality and bounded rows, and contacts
-  /// and unilateral rows that approach or rest (q_N <= 0) or carried load in the last step
-  /// (`warmStart`, may be null: r_N > 0; a resting contact's q_N flickers around 0 by round-off
-  /// and drift). The others get 0; r is not projected onto the cones. False when no row is
-  /// selected or a factorization fails (r is then unusable).
+  /// The start r (start(), W.size() entries) from W's factors, q and the blocks (W's partition).
+  /// The rows stopped are the active ones of the chooser (docs/solvers.md): equality and bounded
+  /// rows, and contacts and unilateral rows that approach or rest (q_N <= 0) or carried load
+  /// (`warmStart`, may be null: r_N > 0; the last step's impulses, or the iterate of a solve that
+  /// restarts from it; a resting contact's q_N flickers around 0 by round-off and drift). The
+  /// others get 0; r is not projected onto the cones. False when no row is selected or a
+  /// factorization fails (r is then unusable).
   bool compute(const BodySpaceDelassus& W, const Eigen::VectorXd& q,
-               const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd* warmStart,
-               Eigen::VectorXd& r);
+               const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd* warmStart);
+  /// The last computed start (kept here, so that a solve that takes it allocates nothing).
+  [[nodiscard]] const Eigen::VectorXd& start() const { return start_; }
 
  private:
   // Whether block b is stopped, and its body pair's index in pairs_ (-1: one side or one body).
@@ -56,19 +59,17 @@ class StickingStart {
   [[nodiscard]] bool selected(const BodySpaceDelassus& W, int b) const;
   [[nodiscard]] int pairOf(const BodySpaceDelassus& W, int b) const;
   void buildPattern(const BodySpaceDelassus& W);
-  void accumulate(const BodySpaceDelassus& W, bool inverseMassWeighted, std::vector<double>& out);
-  [[nodiscard]] int diagonalSlot(int body, int i, int j) const;  // i >= j
-  [[nodiscard]] int pairSlot(int pair, int i, int j) const;
+  // P (J's rows) or Q (M^-1 J^T's) into diagonal_ and coupling_, regularized.
+  void accumulate(const BodySpaceDelassus& W, bool inverseMassWeighted);
 
   const Eigen::VectorXd* q_ = nullptr;  // the problem being started (during compute only)
   const std::vector<ConstraintBlock>* blocks_ = nullptr;
   const Eigen::VectorXd* warmStart_ = nullptr;
-  std::vector<long long> pairs_;  // (higher body, lower body) of coupled bodies, sorted
-  std::vector<int> rows_, cols_;  // the pattern of P and Q (lower triangle)
-  std::vector<double> p_, qm_;    // their values in the pattern's order
-  std::vector<Eigen::Matrix<double, 6, 6>> diagonal_, coupling_;  // per body, per pair
-  SparseLdlt ldlt_;
-  Eigen::VectorXd rhs_, f_, x_;
+  std::vector<long long> pairs_;              // (higher body, lower body) of coupled bodies, sorted
+  std::vector<std::pair<int, int>> pattern_;  // pairs_ as (higher, lower): P and Q's pattern
+  std::vector<BlockLdlt::Block> diagonal_, coupling_;  // per body, per pair
+  BlockLdlt ldlt_;
+  Eigen::VectorXd rhs_, f_, x_, start_;
   int bodies_ = 0;
 };
 

@@ -1,7 +1,6 @@
 #include <coulomb/solvers/direct/SparseLdlt.hpp>
 
-#include <Eigen/OrderingMethods>
-#include <Eigen/SparseCore>
+#include <coulomb/solvers/direct/SymbolicLdlt.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -20,21 +19,13 @@ void SparseLdlt::analyze(int n, const std::vector<int>& rows, const std::vector<
   rows_ = rows;
   cols_ = cols;
 
-  // Fill-reducing ordering of the symmetric pattern (AMD, as Eigen's SimplicialLDLT).
-  perm_.resize(n);
+  // Fill-reducing ordering of the symmetric pattern.
   {
-    std::vector<Eigen::Triplet<double>> full;
-    full.reserve(2 * rows.size() + n);
-    for (int i = 0; i < n; ++i) full.emplace_back(i, i, 1.0);
-    for (std::size_t e = 0; e < rows.size(); ++e) {
-      full.emplace_back(rows[e], cols[e], 1.0);
-      full.emplace_back(cols[e], rows[e], 1.0);
-    }
-    Eigen::SparseMatrix<double> pattern(n, n);
-    pattern.setFromTriplets(full.begin(), full.end());
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
-    Eigen::AMDOrdering<int>()(pattern, inverse);  // inverse.indices()[new] = original
-    for (int k = 0; k < n; ++k) perm_[inverse.indices()[k]] = k;
+    std::vector<std::pair<int, int>> entries;
+    entries.reserve(rows.size());
+    for (std::size_t e = 0; e < rows.size(); ++e)
+      if (rows[e] != cols[e]) entries.emplace_back(rows[e], cols[e]);
+    amdOrdering(n, entries, perm_);
   }
 
   // The ordered upper triangle by column (Davis's input), with every diagonal entry stored and
@@ -67,19 +58,7 @@ void SparseLdlt::analyze(int n, const std::vector<int>& rows, const std::vector<
   for (int k = 0; k < n; ++k) ap_[k + 1] += ap_[k];
   ax_.assign(ai_.size(), 0.0);
 
-  // ldl_symbolic: elimination tree and the column counts of L.
-  parent_.assign(n, -1);
-  lnz_.assign(n, 0);
-  flag_.assign(n, 0);
-  for (int k = 0; k < n; ++k) {
-    flag_[k] = k;
-    for (int p = ap_[k]; p < ap_[k + 1]; ++p)
-      for (int i = ai_[p]; i < k && flag_[i] != k; i = parent_[i]) {
-        if (parent_[i] == -1) parent_[i] = k;
-        ++lnz_[i];
-        flag_[i] = k;
-      }
-  }
+  eliminationTree(n, ap_, ai_, parent_, lnz_, flag_);
   lp_.assign(n + 1, 0);
   for (int k = 0; k < n; ++k) lp_[k + 1] = lp_[k] + lnz_[k];
   li_.assign(lp_[n], 0);

@@ -6,10 +6,12 @@
 // 910. All run on the same problem captured from the World (body-space W).
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
+#include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/SolverRegistry.hpp>
 
 #include "scenes/SceneRegistry.hpp"
 
+#include <algorithm>
 #include <optional>
 
 using namespace coulomb;
@@ -93,5 +95,40 @@ TEST(NncgColdPyramid, TheWorldSolvesTheFirstStepAtItsStickingStart) {
     // The next step is warm-started everywhere: no sticking start is computed.
     for (const engine::IslandReport& island : world.step(scene.settings.timeStep).islands)
       EXPECT_EQ(island.solve.message.find("sticking start"), std::string::npos);
+  }
+}
+
+// The restart (ContactSolver::kStickingRestartSweeps): a standing pyramid_10 whose warm start
+// Gauss-Seidel cannot finish in two sweeps restarts from the all-sticking start, which is exact
+// there, so no step sweeps more than twice. Without the sticking start the same scene has steps
+// of tens of sweeps (50 at step 6 from its cold start, 20 around step 100).
+TEST(NncgColdPyramid, AStandingPyramidNeverSweepsLongerThanItsStickingRestart) {
+  for (const bool sticking : {true, false}) {
+    engine::io::Scene scene = scenes::loadBuiltinScene("pyramid_10");
+    scene.settings.solve.options.stickingStart = sticking;
+    engine::World world = engine::io::buildWorld(scene);
+    int most = 0, restarts = 0;
+    for (int step = 0; step < 400; ++step) {
+      const engine::StepReport& report = world.step(scene.settings.timeStep);
+      for (const engine::IslandReport& island : report.islands) {
+        ASSERT_EQ(island.status, solvers::SolverStatus::Converged) << step;
+        EXPECT_LE(island.solve.residual, 1e-6) << step;
+        int sweeps = 0;
+        for (const solvers::SolverReport& attempt : island.attempts) sweeps += attempt.iterations;
+        if (step > 0) most = std::max(most, sweeps);
+        const bool restarted = island.solve.message.find("sticking start") != std::string::npos;
+        if (step > 0 && restarted) {
+          EXPECT_EQ(sweeps, solvers::ContactSolver::kStickingRestartSweeps) << step;
+          ++restarts;
+        }
+      }
+    }
+    if (sticking) {
+      EXPECT_LE(most, solvers::ContactSolver::kStickingRestartSweeps);
+      EXPECT_GT(restarts, 0);
+    } else {
+      EXPECT_GE(most, 10);
+      EXPECT_EQ(restarts, 0);
+    }
   }
 }

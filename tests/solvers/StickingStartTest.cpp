@@ -2,7 +2,8 @@
 // of a resting tower: each of the four corner points under box k carries a quarter of the weight
 // impulse of the boxes above it and of box k, no tangential impulse, and every contact stops
 // (u = W r + q = 0). A contact moving apart gets nothing; a start that the cone rejects is not
-// kept; a solver started from it on a resting tower ends at its start.
+// kept; a solver started from it on a resting tower ends at its start, and one whose warm start
+// the sweeps cannot finish restarts from it.
 #include <gtest/gtest.h>
 #include <coulomb/solvers/BodySpaceDelassus.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
@@ -65,8 +66,8 @@ TEST(StickingStart, ATowerAtRestCarriesEachBoxsWeightEvenlyOnItsFourCorners) {
   for (const int boxes : {1, 3, 10}) {
     const ContactProblem p = tower(boxes, 0.5);
     StickingStart sticking;
-    Eigen::VectorXd r;
-    ASSERT_TRUE(sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr, r));
+    ASSERT_TRUE(sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr));
+    const Eigen::VectorXd& r = sticking.start();
     for (int k = 0; k < boxes; ++k)
       for (int corner = 0; corner < 4; ++corner) {
         const int c = 4 * k + corner;
@@ -87,14 +88,13 @@ TEST(StickingStart, AContactMovingApartGetsNothing) {
   ContactProblem p = tower(2, 0.5);
   for (int c = 4; c < 8; ++c) p.q[3 * c] = 0.1;  // the top box leaves the bottom one
   StickingStart sticking;
-  Eigen::VectorXd r;
-  ASSERT_TRUE(sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr, r));
+  ASSERT_TRUE(sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr));
+  const Eigen::VectorXd& r = sticking.start();
   for (int c = 4; c < 8; ++c) EXPECT_EQ(r.segment<3>(3 * c).norm(), 0.0);
   for (int c = 0; c < 4; ++c)  // the bottom box alone on the ground
     EXPECT_NEAR(r[3 * c], kMass * kGravity * kStep / 4.0, 1e-9);
   for (int c = 0; c < 8; ++c) p.q[3 * c] = 0.1;
-  EXPECT_FALSE(
-      sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr, r));  // nothing touches
+  EXPECT_FALSE(sticking.compute(*p.W.bodySpaceOperator(), p.q, p.blocks, nullptr));  // no contact
 }
 
 TEST(StickingStart, ASolverStartsFromItOnAFreshTowerAndEndsThere) {
@@ -130,4 +130,39 @@ TEST(StickingStart, AStartOutsideTheConesIsOnlyACandidate) {
     const Eigen::Vector3d rc = out.impulses.segment<3>(3 * c);
     EXPECT_NEAR(rc.tail<2>().norm(), 0.2 * rc[0], 1e-8) << c;
   }
+}
+
+// A warm start that Gauss-Seidel cannot finish in kStickingRestartSweeps sweeps (each corner
+// carries only its own box's weight, so the load still has to move down the tower): the solver
+// restarts from the sticking start and ends there. Without the option, or without a budget beyond
+// those sweeps, it does not.
+TEST(StickingStart, AWarmStartedSolveThatSweepsCannotFinishRestartsFromIt) {
+  ContactProblem p = tower(10, 0.5);
+  Eigen::VectorXd warm = Eigen::VectorXd::Zero(p.size());
+  for (int c = 0; c < 40; ++c) warm[3 * c] = kMass * kGravity * kStep / 4.0;
+  p.warmStart = warm;
+  SolverOptions options;
+  options.tolerance = 1e-8;
+  options.maxIterations = 200;
+  options.stickingStart = true;
+  const SolveOutcome with = BgsSolver().solve(p, options);
+  EXPECT_EQ(with.report.status, SolverStatus::Converged);
+  // The note of a restart is that of the start; the sweeps before it say it was a restart.
+  EXPECT_EQ(with.report.iterations, ContactSolver::kStickingRestartSweeps);
+  EXPECT_NE(with.report.message.find("sticking start"), std::string::npos) << with.report.message;
+  for (int k = 0; k < 10; ++k) {
+    double load = 0.0;
+    for (int c = 4 * k; c < 4 * k + 4; ++c) load += with.impulses[3 * c];
+    const double weight = (10 - k) * kMass * kGravity * kStep;
+    EXPECT_NEAR(load, weight, 1e-6 * weight) << k;
+  }
+  options.stickingStart = false;
+  const SolveOutcome without = BgsSolver().solve(p, options);
+  EXPECT_GT(without.report.iterations, 50);
+  EXPECT_EQ(without.report.message.find("sticking"), std::string::npos);
+  options.stickingStart = true;
+  options.maxIterations = ContactSolver::kStickingRestartSweeps;  // no budget beyond the sweeps
+  const SolveOutcome capped = BgsSolver().solve(p, options);
+  EXPECT_EQ(capped.report.status, SolverStatus::MaxIterations);
+  EXPECT_EQ(capped.report.message.find("sticking"), std::string::npos);
 }
