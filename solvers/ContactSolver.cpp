@@ -171,15 +171,27 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
       // The iterate takes the warm start's place in choosing the stopped contacts: those it
       // loads. It is in the problem's variables: body space is kept only for problems that
       // PreparedProblem does not rescale (no anisotropic cone).
-      if (stick.compute(*factors, problem.q, problem.blocks, &r) && tryStart(stick.start(), false))
+      if (stick.compute(*factors, problem.q, problem.blocks, &r) &&
+          tryStart(stick.start(), false)) {
         report.note(kStickingNote);
-      SolverOptions restOptions = options;
-      restOptions.maxIterations = options.maxIterations - used;
-      if (e <= options.tolerance) {
-        report.status = SolverStatus::Converged;
-        report.nativeResidual = e;
+        SolverOptions restOptions = options;
+        restOptions.maxIterations = options.maxIterations - used;
+        if (e <= options.tolerance) {
+          report.status = SolverStatus::Converged;
+          report.nativeResidual = e;
+        } else {
+          runFrom(restOptions);
+          report.iterations += used;
+        }
       } else {
-        runFrom(restOptions);
+        // Rejected: the solve runs as it would have without the restart, from its own start (its
+        // first sweeps repeated). Continuing from the iterate instead would cut the sweeps'
+        // momentum, which is a different iteration: on a collapsing card house it took the
+        // collapse along costlier paths (docs/benchmarks.md "Sticking restart").
+        r = prepared.start.r;
+        dv = prepared.start.dv;
+        e = prepared.start.residual;
+        runFrom(options);
         report.iterations += used;
       }
     }
