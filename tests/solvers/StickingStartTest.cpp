@@ -3,7 +3,7 @@
 // impulse of the boxes above it and of box k, no tangential impulse, and every contact stops
 // (u = W r + q = 0). A contact moving apart gets nothing; a start that the cone rejects is not
 // kept; a solver started from it on a resting tower ends at its start, and one whose warm start
-// the sweeps cannot finish restarts from it.
+// the sweeps cannot finish restarts from it (a restart the residual rejects changes nothing).
 #include <gtest/gtest.h>
 #include <coulomb/solvers/BodySpaceDelassus.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
@@ -165,4 +165,28 @@ TEST(StickingStart, AWarmStartedSolveThatSweepsCannotFinishRestartsFromIt) {
   const SolveOutcome capped = BgsSolver().solve(p, options);
   EXPECT_EQ(capped.report.status, SolverStatus::MaxIterations);
   EXPECT_EQ(capped.report.message.find("sticking"), std::string::npos);
+}
+
+// A restart that the residual rejects (the top box slides, so the projected sticking start is
+// worse than the sweeps' iterate) leaves the solve as it would have been without the option: the
+// same answer bit for bit, after the same sweeps plus the two repeated ones.
+TEST(StickingStart, ARejectedRestartLeavesTheSolveAsWithoutIt) {
+  ContactProblem p = tower(3, 0.2, 1.0);
+  Eigen::VectorXd warm = Eigen::VectorXd::Zero(p.size());
+  for (int c = 0; c < 12; ++c) warm[3 * c] = kMass * kGravity * kStep / 4.0;
+  p.warmStart = warm;
+  SolverOptions options;
+  options.tolerance = 1e-10;
+  options.maxIterations = 500;
+  options.stickingStart = false;
+  const SolveOutcome without = BgsSolver().solve(p, options);
+  options.stickingStart = true;
+  const SolveOutcome with = BgsSolver().solve(p, options);
+  ASSERT_EQ(without.report.status, SolverStatus::Converged);
+  ASSERT_GT(without.report.iterations, ContactSolver::kStickingRestartSweeps);
+  EXPECT_EQ(with.report.message.find("sticking start"), std::string::npos) << "kept";
+  EXPECT_EQ(with.report.status, SolverStatus::Converged);
+  EXPECT_EQ(with.report.iterations,
+            without.report.iterations + ContactSolver::kStickingRestartSweeps);
+  EXPECT_EQ(with.impulses, without.impulses);
 }
