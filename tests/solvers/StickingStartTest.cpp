@@ -60,6 +60,34 @@ ContactProblem tower(int boxes, double mu, double lateral = 0.0) {
                                   std::vector<double>(contacts, mu), "tower");
 }
 
+// The tower with a warm start in which each corner carries only its own box's weight: the load
+// of the boxes above still has to move down, which Gauss-Seidel does one layer per sweep.
+ContactProblem towerWarmStartedWithOwnWeights(int boxes, double mu, double lateral = 0.0) {
+  ContactProblem p = tower(boxes, mu, lateral);
+  Eigen::VectorXd warm = Eigen::VectorXd::Zero(p.size());
+  for (int c = 0; c < 4 * boxes; ++c) warm[3 * c] = kMass * kGravity * kStep / 4.0;
+  p.warmStart = warm;
+  return p;
+}
+
+SolverOptions restartOptions(double tolerance, int maxIterations) {
+  SolverOptions options;
+  options.tolerance = tolerance;
+  options.maxIterations = maxIterations;
+  options.stickingStart = true;
+  return options;
+}
+
+// Each face of the resting tower carries the weight of the boxes above it (and its own box).
+void expectFacesCarryTheWeightAbove(const Eigen::VectorXd& impulses, int boxes) {
+  for (int k = 0; k < boxes; ++k) {
+    double load = 0.0;
+    for (int c = 4 * k; c < 4 * k + 4; ++c) load += impulses[3 * c];
+    const double weight = (boxes - k) * kMass * kGravity * kStep;
+    EXPECT_NEAR(load, weight, 1e-6 * weight) << k;
+  }
+}
+
 }  // namespace
 
 TEST(StickingStart, ATowerAtRestCarriesEachBoxsWeightEvenlyOnItsFourCorners) {
@@ -109,12 +137,7 @@ TEST(StickingStart, ASolverStartsFromItOnAFreshTowerAndEndsThere) {
   options.stickingStart = false;
   const SolveOutcome without = BgsSolver().solve(p, options);
   EXPECT_GT(without.report.iterations, 50);  // the load travels up one layer per sweep at best
-  for (int k = 0; k < 10; ++k) {             // each face carries the weight above it
-    double load = 0.0;
-    for (int c = 4 * k; c < 4 * k + 4; ++c) load += with.impulses[3 * c];
-    const double weight = (10 - k) * kMass * kGravity * kStep;
-    EXPECT_NEAR(load, weight, 1e-6 * weight) << k;
-  }
+  expectFacesCarryTheWeightAbove(with.impulses, 10);
 }
 
 TEST(StickingStart, AStartOutsideTheConesIsOnlyACandidate) {
@@ -137,25 +160,14 @@ TEST(StickingStart, AStartOutsideTheConesIsOnlyACandidate) {
 // restarts from the sticking start and ends there. Without the option, or without a budget beyond
 // those sweeps, it does not.
 TEST(StickingStart, AWarmStartedSolveThatSweepsCannotFinishRestartsFromIt) {
-  ContactProblem p = tower(10, 0.5);
-  Eigen::VectorXd warm = Eigen::VectorXd::Zero(p.size());
-  for (int c = 0; c < 40; ++c) warm[3 * c] = kMass * kGravity * kStep / 4.0;
-  p.warmStart = warm;
-  SolverOptions options;
-  options.tolerance = 1e-8;
-  options.maxIterations = 200;
-  options.stickingStart = true;
+  const ContactProblem p = towerWarmStartedWithOwnWeights(10, 0.5);
+  SolverOptions options = restartOptions(1e-8, 200);
   const SolveOutcome with = BgsSolver().solve(p, options);
   EXPECT_EQ(with.report.status, SolverStatus::Converged);
   // The note of a restart is that of the start; the sweeps before it say it was a restart.
   EXPECT_EQ(with.report.iterations, ContactSolver::kStickingRestartSweeps);
   EXPECT_NE(with.report.message.find("sticking start"), std::string::npos) << with.report.message;
-  for (int k = 0; k < 10; ++k) {
-    double load = 0.0;
-    for (int c = 4 * k; c < 4 * k + 4; ++c) load += with.impulses[3 * c];
-    const double weight = (10 - k) * kMass * kGravity * kStep;
-    EXPECT_NEAR(load, weight, 1e-6 * weight) << k;
-  }
+  expectFacesCarryTheWeightAbove(with.impulses, 10);
   options.stickingStart = false;
   const SolveOutcome without = BgsSolver().solve(p, options);
   EXPECT_GT(without.report.iterations, 50);
@@ -171,13 +183,8 @@ TEST(StickingStart, AWarmStartedSolveThatSweepsCannotFinishRestartsFromIt) {
 // worse than the sweeps' iterate) leaves the solve as it would have been without the option: the
 // same answer bit for bit, after the same sweeps plus the two repeated ones.
 TEST(StickingStart, ARejectedRestartLeavesTheSolveAsWithoutIt) {
-  ContactProblem p = tower(3, 0.2, 1.0);
-  Eigen::VectorXd warm = Eigen::VectorXd::Zero(p.size());
-  for (int c = 0; c < 12; ++c) warm[3 * c] = kMass * kGravity * kStep / 4.0;
-  p.warmStart = warm;
-  SolverOptions options;
-  options.tolerance = 1e-10;
-  options.maxIterations = 500;
+  const ContactProblem p = towerWarmStartedWithOwnWeights(3, 0.2, 1.0);
+  SolverOptions options = restartOptions(1e-10, 500);
   options.stickingStart = false;
   const SolveOutcome without = BgsSolver().solve(p, options);
   options.stickingStart = true;
