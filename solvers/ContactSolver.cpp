@@ -80,7 +80,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   const SolveContext context(options, t0);
   PreparedProblem& prepared = work.prepared;
   try {
-    prepared.assign(problem, worksInBodySpace());
+    prepared.assign(problem, /*keepBodySpace=*/true);
   } catch (const std::exception& e) {
     report.status = SolverStatus::InvalidProblem;
     report.note(std::string("cannot prepare the problem: ") + e.what());
@@ -121,13 +121,17 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // stack, a box landing) it is tried before the solver; with one it is a restart, tried only if
   // a body-space solver has not converged after kStickingRestartSweeps sweeps (ContactSolver.hpp).
   const BodySpaceDelassus* factors = problem.W.bodySpaceOperator();
-  const bool sticking = !start && options.stickingStart && factors != nullptr;
+  const bool sticking = !start && options.stickingStart && factors != nullptr && !ignoresStart();
   StickingStart& stick = options.stickingWorkspace ? *options.stickingWorkspace : work.sticking;
   // One note for both uses, short enough to need no heap: after sweeps (iterations > 0 with a
   // warm start) it was a restart.
   constexpr std::string_view kStickingNote = "sticking start";
-  if (sticking && !warm && e > options.tolerance &&
-      stick.compute(*factors, problem.q, problem.blocks, nullptr) && tryStart(stick.start(), false))
+  // Up front also for a warm-started solver that does not sweep in body space (Newton): one of its
+  // iterations assembles W and factors all 3 x contacts unknowns, the start only 6 x bodies ones,
+  // so the start is the cheaper first try (a restart after a Newton iteration would come too late).
+  const bool upFront = !warm || !worksInBodySpace();
+  if (sticking && upFront && e > options.tolerance &&
+      stick.compute(*factors, problem.q, problem.blocks, warm) && tryStart(stick.start(), false))
     report.note(kStickingNote);
   const bool restart =
       sticking && warm && worksInBodySpace() && options.maxIterations > kStickingRestartSweeps;
@@ -141,6 +145,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     prepared.start.residual = e;
     const Eigen::VectorXd& from = prepared.start.r;
     try {
+      if (!worksInBodySpace()) prepared.formExplicitW(problem);
       solvePrepared(prepared, context.withOptions(runOptions), r, report);
     } catch (const std::exception& ex) {
       report.status = SolverStatus::NumericalFailure;

@@ -47,6 +47,9 @@ class ContactSolver {
 
   // True for solvers whose solvePrepared() works on PreparedProblem::bodySpace (W never formed).
   [[nodiscard]] virtual bool worksInBodySpace() const { return false; }
+  // True for solvers whose answer does not depend on the start (a direct factorization): no start
+  // is computed for them beyond the warm start and r = 0.
+  [[nodiscard]] virtual bool ignoresStart() const { return false; }
 
   [[nodiscard]] SolveOutcome solve(const ContactProblem& problem,
                                    const SolverOptions& options = {}) const;

@@ -50,11 +50,25 @@ void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) 
     p.q = p.q.cwiseProduct(p.scale);
   }
   p.qNorm = plainNorm(p.q);
-  for (int b = 0; b < p.blockCount(); ++b) {  // max_i W_ii, block by block (no row search)
-    const double* d = p.diagonalBlock(b);
-    const int s = p.blocks[b].size();
-    for (int a = 0; a < s; ++a) p.maxDiagonal = std::max(p.maxDiagonal, d[(s + 1) * a]);
+  p.maxDiagonal = largestDiagonal();
+}
+
+double PreparedProblem::largestDiagonal() const {
+  double largest = 0.0;
+  for (int b = 0; b < blockCount(); ++b) {  // max_i W_ii, block by block (no row search)
+    const double* d = diagonalBlock(b);
+    const int s = blocks[b].size();
+    for (int a = 0; a < s; ++a) largest = std::max(largest, d[(s + 1) * a]);
   }
+  return largest;
+}
+
+void PreparedProblem::formExplicitW(const ContactProblem& problem) {
+  if (!bodySpace) return;
+  problem.W.toBlockSparse(sizes, W);
+  bodySpace.reset();
+  diagonalBlocks = nullptr;
+  maxDiagonal = largestDiagonal();
 }
 
 const double* PreparedProblem::diagonalBlock(int b) const {

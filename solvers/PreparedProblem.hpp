@@ -58,12 +58,17 @@ struct PreparedProblem {
   static PreparedProblem from(const ContactProblem& problem, bool keepBodySpace = false);
   // The same into this object, reusing its storage (ContactSolver's workspace).
   void assign(const ContactProblem& problem, bool keepBodySpace = false);
+  // W formed from the body-space factors kept by assign (a no-op without them): ContactSolver
+  // keeps the factors while it only evaluates starts, and forms W only for a solver that iterates
+  // on it, so that a warm start that already converges never pays for W.
+  void formExplicitW(const ContactProblem& problem);
 
   [[nodiscard]] int size() const { return static_cast<int>(q.size()); }
   [[nodiscard]] int blockCount() const { return static_cast<int>(blocks.size()); }
   [[nodiscard]] Eigen::Matrix3d contactBlock(int b) const;  // W_bb of a contact block
   [[nodiscard]] double diagonal(int row) const;             // W_ii
   [[nodiscard]] const double* diagonalBlock(int b) const;   // W_bb, row-major
+  [[nodiscard]] double largestDiagonal() const;             // max_i W_ii
 
   void velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;  // u = W r + q
   // e_rel of (1.8) in this problem's variables; computes u.

@@ -18,6 +18,7 @@ namespace coulomb::solvers {
 class EqualityLdltSolver final : public ContactSolver {
  public:
   [[nodiscard]] std::string name() const override { return "ldlt"; }
+  [[nodiscard]] bool ignoresStart() const override { return true; }
   [[nodiscard]] std::optional<std::string> notApplicable(
       const ContactProblem& problem) const override;
   void solvePrepared(const PreparedProblem& problem, const SolveContext& context,

@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
 #include <coulomb/solvers/PreparedProblem.hpp>
 #include <coulomb/solvers/Residual.hpp>
 
+#include <cstdlib>
+#include <memory>
 #include <thread>
+#include <vector>
 
 using namespace coulomb::solvers;
 
@@ -50,4 +54,35 @@ TEST(SolveContext, TimeLimitAndHistory) {
   c.record(r, 1, 0.5);
   ASSERT_EQ(r.history.size(), 1u);
   EXPECT_EQ(c.maxIterations(7), 7);
+}
+
+// ContactSolver keeps a body-space W factored until a solver needs W itself: forming it then
+// gives what forming it up front does, entry for entry, with the same largest diagonal.
+TEST(PreparedProblem, WFormedOnDemandEqualsWFormedUpFront) {
+  auto factors = std::make_shared<BodySpaceDelassus>(2, std::vector<int>{3, 3, 1});
+  std::srand(7);
+  const Eigen::Matrix<double, 6, 6> inverseMass =
+      Eigen::Matrix<double, 6, 1>(0.5, 0.5, 0.5, 2.0, 3.0, 4.0).asDiagonal();
+  for (int block = 0; block < 3; ++block) {
+    const int rows = block < 2 ? 3 : 1;
+    for (int side = 0; side < 2; ++side) {
+      const Eigen::MatrixXd J = Eigen::MatrixXd::Random(rows, 6);
+      factors->setSide(block, side, side, J, inverseMass * J.transpose());
+    }
+  }
+  ContactProblem p;
+  p.blocks = {ConstraintBlock::contact(0.5), ConstraintBlock::contact(0.3),
+              ConstraintBlock::unilateral()};
+  p.W = DelassusOperator::bodySpace(factors);
+  p.q = Eigen::VectorXd::LinSpaced(7, -1.0, 0.5);
+  PreparedProblem upFront, onDemand;
+  upFront.assign(p, /*keepBodySpace=*/false);
+  onDemand.assign(p, /*keepBodySpace=*/true);
+  ASSERT_NE(onDemand.bodySpace, nullptr);
+  EXPECT_EQ(onDemand.maxDiagonal, upFront.maxDiagonal);
+  onDemand.formExplicitW(p);
+  EXPECT_EQ(onDemand.bodySpace, nullptr);
+  EXPECT_EQ(onDemand.W.toDense(), upFront.W.toDense());
+  EXPECT_EQ(onDemand.maxDiagonal, upFront.maxDiagonal);
+  EXPECT_GT(upFront.maxDiagonal, 0.0);
 }
