@@ -20,8 +20,10 @@ namespace coulomb::solvers {
 
 struct PreparedProblem {
   BlockSparseMatrix W;  // empty when bodySpace is set
-  // Set instead of W for solvers that work on the factors (Gauss-Seidel, see BodySpaceDelassus)
-  // when the problem's W is body-space and isotropic: W is then never formed.
+  // Set instead of W when the problem's W is body-space and isotropic (assign with keepBodySpace):
+  // solvers that work on the factors (Gauss-Seidel, see BodySpaceDelassus) never form W; for the
+  // others ContactSolver calls formExplicitW only once they iterate (the starts are evaluated on
+  // the factors).
   std::shared_ptr<const BodySpaceDelassus> bodySpace;
   // With bodySpace: W_bb row-major at 9 b, the factors' own cache (BodySpaceDelassus::
   // diagonalBlocks, valid while bodySpace is held: the factors are never changed once shared).
