@@ -23,6 +23,7 @@
 #include <coulomb/joints/JointPrimitives.hpp>
 #include <coulomb/joints/RowBlock.hpp>
 #include <coulomb/joints/Stabilization.hpp>
+#include <coulomb/solvers/direct/BlockLdlt.hpp>
 #include <coulomb/solvers/direct/SparseLdlt.hpp>
 
 #include <Eigen/Core>
@@ -80,6 +81,14 @@ struct PredictedStateWorkspace {
   std::vector<int> symmetricRows, symmetricCols, symmetricSource;
   solvers::SparseLdlt normalLdlt, symmetricLdlt;
   bool symmetricAnalyzed = false;
+  // Every joint with 3 rows (ball joints: chains, ropes, ragdoll shoulders): B^T B factorized by
+  // 3 x 3 blocks (solvers/direct/BlockLdlt) instead of entry by entry, several times cheaper.
+  bool normalByBlocks = false;
+  solvers::BlockLdltOf<3> normalBlockLdlt;
+  std::vector<std::pair<int, int>> normalBlockPairs;  // the off-diagonal normalPairs, as (i, j)
+  std::vector<int> normalBlockSource;                 // their indices in normalPairs
+  std::vector<int> normalDiagonalSource;              // per joint: (j, j)'s index in normalPairs
+  std::vector<solvers::BlockLdltOf<3>::Block> normalBlockDiagonal, normalBlockCoupling;
   // The iteration.
   std::vector<joints::ConstraintEval> start, predicted, along;
   std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>> minvJt;  // per touch

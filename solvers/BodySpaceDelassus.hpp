@@ -41,7 +41,7 @@ class BodySpaceDelassus {
   /// The local body side `side` (0 or 1) of block b acts on; -1 when that side has no unknowns.
   [[nodiscard]] int blockBody(int b, int side) const { return body_[2 * b + side]; }
   /// Row `row`'s Jacobian on side `side` and the same row's column of M^-1 J^T (6 numbers each:
-  /// linear, angular); zeros on a side left unset.
+  /// linear, angular); meaningless on a side left unset (blockBody < 0), which readers skip.
   [[nodiscard]] const double* jacobianRow(int row, int side) const { return J(row, side); }
   [[nodiscard]] const double* inverseMassColumn(int row, int side) const { return G(row, side); }
 
@@ -85,7 +85,7 @@ class BodySpaceDelassus {
   /// The operator of the given rows only (each a 1-row block on the same bodies), e.g. the
   /// contacts' normal rows for the split impulse: W' = W restricted to those rows and columns.
   [[nodiscard]] BodySpaceDelassus selectRows(const std::vector<int>& rows) const;
-  /// Every number of the set sides finite (unset sides hold zeros). O(1) unless a side was
+  /// Every number of the set sides finite (unset sides are not read). O(1) unless a side was
   /// set twice (then one pass over the set sides): setSide checks what it copies.
   [[nodiscard]] bool allFinite() const;
   /// W with every nonzero block (k, j) of blocks sharing a body, cached after the first call.

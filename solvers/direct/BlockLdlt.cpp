@@ -3,13 +3,15 @@
 #include <coulomb/solvers/direct/SymbolicLdlt.hpp>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <stdexcept>
 
 namespace coulomb::solvers {
 
-void BlockLdlt::analyze(int blocks, const std::vector<std::pair<int, int>>& pairs) {
+template <int N>
+void BlockLdltOf<N>::analyze(int blocks, const std::vector<std::pair<int, int>>& pairs) {
   if (blocks < 0) throw std::invalid_argument("BlockLdlt::analyze: negative block count");
   for (const auto& [row, col] : pairs)
     if (row < 0 || col < 0 || row >= blocks || col >= blocks || row == col)
@@ -50,19 +52,22 @@ void BlockLdlt::analyze(int blocks, const std::vector<std::pair<int, int>>& pair
   dInverse_.assign(n, Block::Zero());
   y_.assign(n, Block::Zero());
   pattern_.assign(n, 0);
-  work_.resize(6 * static_cast<Eigen::Index>(n));
+  work_.resize(N * static_cast<Eigen::Index>(n));
 }
 
-bool BlockLdlt::analyzed(int blocks, const std::vector<std::pair<int, int>>& pairs) const {
+template <int N>
+bool BlockLdltOf<N>::analyzed(int blocks, const std::vector<std::pair<int, int>>& pairs) const {
   return blocks == n_ && pairs == pairs_;
 }
 
-bool BlockLdlt::factorize(const std::vector<Block>& diagonal, const std::vector<Block>& coupling) {
+template <int N>
+bool BlockLdltOf<N>::factorize(const std::vector<Block>& diagonal,
+                               const std::vector<Block>& coupling) {
   const int n = n_;
   if (n < 0 || diagonal.size() != static_cast<std::size_t>(n) || coupling.size() != pairs_.size())
     throw std::invalid_argument("BlockLdlt::factorize: values do not match the pattern");
   // Row k of L by a block triangular solve along the elimination tree (Davis's ldl_numeric with
-  // 6 x 6 blocks): Y_i = D_i L_ki^T, Y_r -= L_ri Y_i, L_ki = (D_i^-1 Y_i)^T, D_k -= L_ki Y_i.
+  // N x N blocks): Y_i = D_i L_ki^T, Y_r -= L_ri Y_i, L_ki = (D_i^-1 Y_i)^T, D_k -= L_ki Y_i.
   for (int k = 0; k < n; ++k) {
     Block d = diagonal[inverse_[k]];
     int top = n;
@@ -93,20 +98,29 @@ bool BlockLdlt::factorize(const std::vector<Block>& diagonal, const std::vector<
       lx_[end] = lki;
       ++lnz_[i];
     }
-    const Eigen::LDLT<Block> pivot(d);
-    if (pivot.info() != Eigen::Success || !d.allFinite() || (pivot.vectorD().array() == 0.0).any())
-      return false;
-    dInverse_[k] = pivot.solve(Block::Identity());
+    if (!d.allFinite()) return false;
+    if constexpr (N <= 4) {
+      // Eigen's closed-form (cofactor) inverse: a 3 x 3 pivot by a pivoted LDL^T and N
+      // solves cost half of the whole factorization of a chain's correction matrix.
+      bool invertible = false;
+      d.computeInverseWithCheck(dInverse_[k], invertible, 0.0);
+      if (!invertible) return false;
+    } else {
+      const Eigen::LDLT<Block> pivot(d);
+      if (pivot.info() != Eigen::Success || (pivot.vectorD().array() == 0.0).any()) return false;
+      dInverse_[k] = pivot.solve(Block::Identity());
+    }
     if (!dInverse_[k].allFinite()) return false;
   }
   return true;
 }
 
-void BlockLdlt::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+template <int N>
+void BlockLdltOf<N>::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const int n = n_;
-  using Segment = Eigen::Matrix<double, 6, 1>;
-  auto w = [&](int j) { return work_.segment<6>(6 * static_cast<Eigen::Index>(j)); };
-  for (int i = 0; i < n; ++i) w(perm_[i]) = b.segment<6>(6 * static_cast<Eigen::Index>(i));
+  using Segment = Eigen::Matrix<double, N, 1>;
+  auto w = [&](int j) { return work_.segment<N>(N * static_cast<Eigen::Index>(j)); };
+  for (int i = 0; i < n; ++i) w(perm_[i]) = b.segment<N>(N * static_cast<Eigen::Index>(i));
   for (int j = 0; j < n; ++j) {  // L y = P b
     const Segment wj = w(j);
     for (int p = lp_[j]; p < lp_[j + 1]; ++p) w(li_[p]).noalias() -= lx_[p] * wj;
@@ -117,8 +131,11 @@ void BlockLdlt::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     for (int p = lp_[j]; p < lp_[j + 1]; ++p) wj.noalias() -= lx_[p].transpose() * w(li_[p]);
     w(j) = wj;
   }
-  x.resize(6 * static_cast<Eigen::Index>(n));
-  for (int i = 0; i < n; ++i) x.segment<6>(6 * static_cast<Eigen::Index>(i)) = w(perm_[i]);
+  x.resize(N * static_cast<Eigen::Index>(n));
+  for (int i = 0; i < n; ++i) x.segment<N>(N * static_cast<Eigen::Index>(i)) = w(perm_[i]);
 }
+
+template class BlockLdltOf<3>;
+template class BlockLdltOf<6>;
 
 }  // namespace coulomb::solvers

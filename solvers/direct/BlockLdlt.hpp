@@ -1,11 +1,13 @@
 #pragma once
-// Sparse LDL^T of a symmetric positive definite matrix made of 6 x 6 blocks, one block row per
-// rigid body (the body-space normal matrices J^T J and M^-1 J^T J M^-1 of the sticking start,
-// StickingStart.hpp). L is unit lower triangular by blocks and D block diagonal (6 x 6 blocks).
+// Sparse LDL^T of a symmetric positive definite matrix made of N x N blocks: 6 x 6 with one block
+// row per rigid body (the body-space normal matrices J^T J and M^-1 J^T J M^-1 of the sticking
+// start, StickingStart.hpp), 3 x 3 with one block row per ball joint (the normal matrix of the
+// joint correction, integrators/PredictedStateCorrection). L is unit lower triangular by blocks
+// and D block diagonal. Instantiated for N = 3 and 6 only (BlockLdlt.cpp).
 // The algorithm is the up-looking LDL^T of Davis (2005), "Algorithm 849: A concise sparse
 // Cholesky factorization package", ACM TOMS 31(4), carried out on the graph of the bodies instead
 // of the scalar entries: the ordering (AMD), the elimination tree and the storage of L are built
-// once per pattern by analyze(), and every numeric operation is a fixed-size 6 x 6 product that
+// once per pattern by analyze(), and every numeric operation is a fixed-size N x N product that
 // the compiler vectorizes. On the 211 boxes of pyramid_20 this is several times faster than the
 // scalar SparseLdlt on the same matrix (docs/benchmarks.md "Sticking start"), which spends its time
 // walking the same block pattern one entry at a time.
@@ -16,9 +18,10 @@
 
 namespace coulomb::solvers {
 
-class BlockLdlt {
+template <int N>
+class BlockLdltOf {
  public:
-  using Block = Eigen::Matrix<double, 6, 6>;
+  using Block = Eigen::Matrix<double, N, N>;
 
   /// The pattern: `blocks` block rows and the coupled pairs, each (row, col) with row != col and
   /// both in [0, blocks); a pair's block is A(row, col), its transpose A(col, row) implied. The
@@ -50,5 +53,9 @@ class BlockLdlt {
   std::vector<Block> lx_, dInverse_, y_;
   Eigen::VectorXd work_;
 };
+
+extern template class BlockLdltOf<3>;
+extern template class BlockLdltOf<6>;
+using BlockLdlt = BlockLdltOf<6>;
 
 }  // namespace coulomb::solvers

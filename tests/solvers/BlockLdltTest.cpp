@@ -1,7 +1,8 @@
 // BlockLdlt against a dense factorization: symmetric positive definite matrices of 6 x 6 blocks
 // with the patterns of contact graphs (a tower, a pyramid's layers, a ring, pairs given in both
 // orientations), the analysis reused with new values, zero fill on trees, x aliasing b, and a
-// singular or non-finite pivot block reported.
+// singular or non-finite pivot block reported; and of 3 x 3 blocks (BlockLdltOf<3>) with the
+// patterns of a ball-joint chain's and a branching mechanism's correction matrix B^T B.
 #include <coulomb/solvers/direct/BlockLdlt.hpp>
 
 #include <gtest/gtest.h>
@@ -21,43 +22,47 @@ namespace {
 using Block = BlockLdlt::Block;
 using Pairs = std::vector<std::pair<int, int>>;
 
+template <int N>
 struct Values {
-  std::vector<Block> diagonal, coupling;
+  std::vector<typename BlockLdltOf<N>::Block> diagonal, coupling;
   Eigen::MatrixXd dense;
 };
 
 // A random SPD matrix on the pattern: random couplings, diagonal blocks made dominant.
-Values randomSpd(int n, const Pairs& pairs, std::mt19937& rng) {
+template <int N = 6>
+Values<N> randomSpd(int n, const Pairs& pairs, std::mt19937& rng) {
+  using B = typename BlockLdltOf<N>::Block;
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Values v;
-  v.dense = Eigen::MatrixXd::Zero(6 * n, 6 * n);
+  Values<N> v;
+  v.dense = Eigen::MatrixXd::Zero(N * n, N * n);
   for (const auto& [row, col] : pairs) {
-    Block c;
-    for (int i = 0; i < 36; ++i) c.data()[i] = u(rng);
+    B c;
+    for (int i = 0; i < N * N; ++i) c.data()[i] = u(rng);
     v.coupling.push_back(c);
-    v.dense.block<6, 6>(6 * row, 6 * col) += c;
-    v.dense.block<6, 6>(6 * col, 6 * row) += c.transpose();
+    v.dense.template block<N, N>(N * row, N * col) += c;
+    v.dense.template block<N, N>(N * col, N * row) += c.transpose();
   }
   for (int i = 0; i < n; ++i) {
-    Block s;
-    for (int k = 0; k < 36; ++k) s.data()[k] = u(rng);
-    Block d = 0.5 * (s + s.transpose());
-    const double offRows = v.dense.middleRows(6 * i, 6).cwiseAbs().rowwise().sum().maxCoeff();
-    d.diagonal().array() += offRows + 6.0 + std::abs(u(rng));
+    B s;
+    for (int k = 0; k < N * N; ++k) s.data()[k] = u(rng);
+    B d = 0.5 * (s + s.transpose());
+    const double offRows = v.dense.middleRows(N * i, N).cwiseAbs().rowwise().sum().maxCoeff();
+    d.diagonal().array() += offRows + N + std::abs(u(rng));
     v.diagonal.push_back(d);
-    v.dense.block<6, 6>(6 * i, 6 * i) = d;
+    v.dense.template block<N, N>(N * i, N * i) = d;
   }
   return v;
 }
 
+template <int N = 6>
 void expectSolves(int n, const Pairs& pairs, int trials) {
   std::mt19937 rng(11);
-  BlockLdlt ldlt;
+  BlockLdltOf<N> ldlt;
   for (int t = 0; t < trials; ++t) {
-    const Values v = randomSpd(n, pairs, rng);
+    const Values<N> v = randomSpd<N>(n, pairs, rng);
     if (!ldlt.analyzed(n, pairs)) ldlt.analyze(n, pairs);
     ASSERT_TRUE(ldlt.factorize(v.diagonal, v.coupling));
-    const Eigen::VectorXd b = Eigen::VectorXd::Random(6 * n);
+    const Eigen::VectorXd b = Eigen::VectorXd::Random(N * n);
     Eigen::VectorXd x;
     ldlt.solve(b, x);
     const Eigen::VectorXd expected = v.dense.ldlt().solve(b);
@@ -104,7 +109,7 @@ TEST(BlockLdlt, SolvesARingAndReusesItsAnalysis) {
 
 TEST(BlockLdlt, SolvesIsolatedBlocksAndAliasedVectors) {
   std::mt19937 rng(3);
-  const Values v = randomSpd(4, {}, rng);
+  const Values<6> v = randomSpd(4, {}, rng);
   BlockLdlt ldlt;
   ldlt.analyze(4, {});
   ASSERT_TRUE(ldlt.factorize(v.diagonal, v.coupling));
@@ -117,18 +122,42 @@ TEST(BlockLdlt, SolvesIsolatedBlocksAndAliasedVectors) {
 TEST(BlockLdlt, ReportsASingularOrNonFinitePivot) {
   const Pairs pairs = tower(3);
   std::mt19937 rng(5);
-  Values v = randomSpd(3, pairs, rng);
+  Values<6> v = randomSpd(3, pairs, rng);
   BlockLdlt ldlt;
   ldlt.analyze(3, pairs);
-  Values singular = v;
+  Values<6> singular = v;
   singular.diagonal[1].setZero();
   singular.coupling[0].setZero();
   singular.coupling[1].setZero();
   EXPECT_FALSE(ldlt.factorize(singular.diagonal, singular.coupling));
-  Values nan = v;
+  Values<6> nan = v;
   nan.coupling[1](2, 3) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(ldlt.factorize(nan.diagonal, nan.coupling));
   EXPECT_TRUE(ldlt.factorize(v.diagonal, v.coupling));  // usable again after a failure
+}
+
+TEST(BlockLdlt, SolvesAChainsCorrectionMatrixByThreeByThreeBlocks) {
+  // B^T B of a chain of ball joints: joint i couples with i - 1 and i - 2 (a pentadiagonal band).
+  Pairs pairs;
+  for (int i = 1; i < 50; ++i) {
+    pairs.push_back({i, i - 1});
+    if (i > 1) pairs.push_back({i, i - 2});
+  }
+  expectSolves<3>(50, pairs, 3);
+}
+
+TEST(BlockLdlt, SolvesABranchingMechanismByThreeByThreeBlocks) {
+  // Joints sharing bodies in a tree that branches (a ragdoll's torso with limbs), pairs in both
+  // orientations, and a loop closed across two branches.
+  Pairs pairs = {{1, 0}, {2, 0}, {3, 0}, {0, 4}, {5, 1}, {6, 5}, {2, 7}, {8, 7}, {9, 3}, {9, 8}};
+  expectSolves<3>(10, pairs, 4);
+  std::mt19937 rng(7);
+  Values<3> singular = randomSpd<3>(10, pairs, rng);
+  singular.diagonal[4].setZero();
+  singular.coupling[3].setZero();
+  BlockLdltOf<3> ldlt;
+  ldlt.analyze(10, pairs);
+  EXPECT_FALSE(ldlt.factorize(singular.diagonal, singular.coupling));
 }
 
 TEST(BlockLdlt, RejectsAPatternOutsideTheMatrix) {
