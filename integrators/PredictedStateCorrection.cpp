@@ -169,7 +169,10 @@ void buildStructure(const geometry::BodyState& state,
   } else {
     w.normalLdlt.analyze(n, w.normalRows, w.normalCols);
   }
-  w.symmetricAnalyzed = false;  // analysed when the projection first needs it
+  // Analysed now, though only the projection passes use it: analysed on first use, it allocated
+  // in whichever steady step first needed a projection (a chain's first stalled whip).
+  w.symmetricLdlt.analyze(n, w.symmetricRows, w.symmetricCols);
+  w.along.resize(jointCount);  // the projection's rows, copied into this storage
   w.b.assign(w.pairValues.back(), 0.0);
   w.normal.assign(w.normalValues.back(), 0.0);
   w.minvJt.resize(w.touches.size());
@@ -448,10 +451,6 @@ void correctPredictedState(geometry::BodyState& state,
        ++pass) {
     w.along = w.predicted;
     assemble(state, w.along, w.along, compliance, w);
-    if (!w.symmetricAnalyzed) {
-      w.symmetricLdlt.analyze(n, w.symmetricRows, w.symmetricCols);
-      w.symmetricAnalyzed = true;
-    }
     w.entries.resize(w.symmetricSource.size());
     for (std::size_t e = 0; e < w.symmetricSource.size(); ++e)
       w.entries[e] = w.b[w.symmetricSource[e]];

@@ -80,7 +80,6 @@ struct PredictedStateWorkspace {
   std::vector<int> normalRows, normalCols, normalSource, normalDiagonal;
   std::vector<int> symmetricRows, symmetricCols, symmetricSource;
   solvers::SparseLdlt normalLdlt, symmetricLdlt;
-  bool symmetricAnalyzed = false;
   // Every joint with 3 rows (ball joints: chains, ropes, ragdoll shoulders): B^T B factorized by
   // 3 x 3 blocks (solvers/direct/BlockLdlt) instead of entry by entry, several times cheaper.
   bool normalByBlocks = false;
