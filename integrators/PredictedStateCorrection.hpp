@@ -5,11 +5,13 @@
 //   1. predict the poses at t+h that integratePositions would produce from the current
 //      velocities (x + h v; the torque-free DLM rotation for dynamic bodies);
 //   2. evaluate each joint's C at the predicted poses: the drift d(t+h) the step would leave;
-//   3. solve A p = -d/h with A = J M^-1 J^T (J at the start of the step, factored once:
-//      sparse LDL^T (solvers/direct/SparseLdlt, analysed once per joint structure), plus a tiny
-//      compliance eps I with eps = 1e-10 max diag(A) so redundant rows, e.g. a closed loop of
-//      hinges, stay solvable; docs/solver-derivations.md sec. 10) and apply dv = M^-1 J^T p to the
-//      velocities;
+//   3. take a Newton step on p -> C(t+h; p): B p = -d/h with B = J_pred M^-1 J^T (the impulse
+//      along the start-of-step rows J, the error measured along the rows at the predicted state),
+//      Levenberg-Marquardt damped, (B^T B + mu I) p = B^T (-d/h), B carrying a tiny compliance
+//      eps I (eps = 1e-10 max diag(J M^-1 J^T)) so redundant rows, e.g. a closed loop of hinges,
+//      stay solvable (docs/solver-derivations.md sec. 10); B^T B factorized by sparse LDL^T
+//      analysed once per joint structure (solvers/direct/SparseLdlt; by 3 x 3 blocks,
+//      solvers/direct/BlockLdlt, when every joint has 3 rows), and dv = M^-1 J^T p applied;
 //   4. repeat until every |C(t+h)| <= tolerance or the iteration cap;
 //   5. if a pass stalls (|C| not halved: SHAKE has no root near, e.g. a heavy load on light
 //      links), the remaining passes project along the rows at the predicted state instead.

@@ -183,8 +183,27 @@ bool BodySpaceDelassus::allFinite() const {
 
 const BlockSparseMatrix& BodySpaceDelassus::toBlockSparse() const {
   if (entriesValid_) return entries_;
-  // Blocks on each body, ascending (each block at most once per body), as CSR over bodies.
   CsrScratch& w = csr_;
+  // The pattern and its products depend only on the partition and on which body each side acts
+  // on: kept from the last call when those are unchanged (a resting stack, a joint island), so
+  // that only the values are recomputed, with the same sums in the same order.
+  if (!(w.patternValid && w.keyBodies == bodies_ && w.keySize == size_ && w.keyBody == body_))
+    buildPattern();
+  w.values.resize(w.termStart.size() - 1);
+  for (std::size_t e = 0; e + 1 < w.termStart.size(); ++e) {
+    double value = 0.0;
+    for (int t = w.termStart[e]; t < w.termStart[e + 1]; ++t)
+      value += dot6(&j_[w.terms[t].first], &g_[w.terms[t].second]);
+    w.values[e] = value;
+  }
+  entries_.assignBlockCsr(size_, w.rowStart, w.columns, w.values);
+  entriesValid_ = true;
+  return entries_;
+}
+
+void BodySpaceDelassus::buildPattern() const {
+  CsrScratch& w = csr_;
+  // Blocks on each body, ascending (each block at most once per body), as CSR over bodies.
   w.bodyStart.assign(bodies_ + 1, 0);
   for (int b = 0; b < blockCount(); ++b)
     for (int side = 0; side < 2; ++side) {
@@ -199,9 +218,12 @@ const BlockSparseMatrix& BodySpaceDelassus::toBlockSparse() const {
       const int body = body_[2 * b + side];
       if (body >= 0 && !(side == 1 && body_[2 * b] == body)) w.bodyBlocks[w.next[body]++] = b;
     }
+  // Entry (a, c) of block (b, j) = sum over the side pairs (s, t) on one body, in (s, t) order,
+  // of J(row a of b, s) . G(column c of j, t): the terms, as offsets into j_ and g_.
   w.rowStart.assign(1, 0);
   w.columns.clear();
-  w.values.clear();
+  w.termStart.assign(1, 0);
+  w.terms.clear();
   for (int b = 0; b < blockCount(); ++b) {
     w.candidates.assign(1, b);  // the diagonal block is always stored
     for (int side = 0; side < 2; ++side) {
@@ -216,19 +238,20 @@ const BlockSparseMatrix& BodySpaceDelassus::toBlockSparse() const {
       w.columns.push_back(j);
       for (int a = 0; a < size_[b]; ++a)
         for (int c = 0; c < size_[j]; ++c) {
-          double value = 0.0;
           for (int s = 0; s < 2; ++s)
             for (int t = 0; t < 2; ++t)
               if (body_[2 * b + s] >= 0 && body_[2 * b + s] == body_[2 * j + t])
-                value += dot6(J(offset_[b] + a, s), G(offset_[j] + c, t));
-          w.values.push_back(value);
+                w.terms.emplace_back((2 * (offset_[b] + a) + s) * 6,
+                                     (2 * (offset_[j] + c) + t) * 6);
+          w.termStart.push_back(static_cast<int>(w.terms.size()));
         }
     }
     w.rowStart.push_back(static_cast<int>(w.columns.size()));
   }
-  entries_.assignBlockCsr(size_, w.rowStart, w.columns, w.values);
-  entriesValid_ = true;
-  return entries_;
+  w.keyBodies = bodies_;
+  w.keySize = size_;
+  w.keyBody = body_;
+  w.patternValid = true;
 }
 
 }  // namespace coulomb::solvers

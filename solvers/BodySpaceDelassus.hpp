@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace coulomb::solvers {
@@ -110,7 +111,13 @@ class BodySpaceDelassus {
   struct CsrScratch {
     std::vector<int> bodyStart, bodyBlocks, next, rowStart, columns, candidates;
     std::vector<double> values;
+    std::vector<int> termStart;              // per stored entry: its terms
+    std::vector<std::pair<int, int>> terms;  // (offset in j_, offset in g_) per dot product
+    int keyBodies = -1;                      // what the pattern was built for
+    std::vector<int> keySize, keyBody;
+    bool patternValid = false;
   };
+  void buildPattern() const;  // csr_'s pattern and terms for the current partition and bodies
   mutable BlockSparseMatrix entries_;
   mutable bool entriesValid_ = false;
   mutable CsrScratch csr_;
