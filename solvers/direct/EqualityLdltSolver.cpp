@@ -12,10 +12,89 @@ std::optional<std::string> EqualityLdltSolver::notApplicable(const ContactProble
   return std::nullopt;
 }
 
+namespace {
+
+// True when the rows of W come in threes, rows 3g .. 3g+2 with the same columns, made of whole
+// threes (a ball joint's three rows, emitted together); then W is a matrix of 3 x 3 blocks.
+bool rowsInThrees(const BlockSparseMatrix& W) {
+  const int n = W.blockCount();
+  if (n == 0 || n % 3 != 0) return false;
+  for (int b = 0; b < n; ++b) {
+    if (W.blockSize(b) != 1) return false;
+    const int first = W.rowBegin(b), count = W.rowEnd(b) - first;
+    if (count % 3 != 0) return false;
+    const int lead = W.rowBegin(b - b % 3);  // the group's first row
+    if (W.rowEnd(b - b % 3) - lead != count) return false;
+    for (int k = 0; k < count; ++k) {
+      const int column = W.blockColumn(first + k);
+      if (column != W.blockColumn(lead + k) || column % 3 != k % 3 ||
+          (k % 3 != 0 && column != W.blockColumn(first + k - 1) + 1))
+        return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 void EqualityLdltSolver::solvePrepared(const PreparedProblem& p, const SolveContext& context,
                                        Eigen::VectorXd& r, SolverReport& report) const {
   const BlockSparseMatrix& W = p.W;
   const int n = p.size();
+  Workspace& w = workspace_;
+  report.iterations = 1;
+  report.nativeResidualName = "common residual of the direct solve";
+  bool byBlocks = rowsInThrees(W);
+  if (byBlocks) {
+    // Block (g, h) of W from rows 3g .. 3g+2, columns 3h .. 3h+2; the lower triangle's blocks
+    // are the pattern, in row order.
+    const int groups = n / 3;
+    w.pairs.clear();
+    w.diagonal.resize(groups);
+    w.coupling.clear();
+    int diagonals = 0;
+    for (int g = 0; g < groups; ++g)
+      for (int k = W.rowBegin(3 * g); k < W.rowEnd(3 * g); k += 3) {
+        const int h = W.blockColumn(k) / 3;
+        if (h > g) continue;
+        BlockLdltOf<3>::Block block;
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c)
+            block(a, c) = W.blockValues(W.rowBegin(3 * g + a) + (k - W.rowBegin(3 * g)) + c)[0];
+        if (h == g) {
+          w.diagonal[g] = block;
+          ++diagonals;
+        } else {
+          w.pairs.emplace_back(g, h);
+          w.coupling.push_back(block);
+        }
+      }
+    byBlocks = diagonals == groups;  // a W without some diagonal block: by entries
+    if (byBlocks && !w.blockLdlt.analyzed(groups, w.pairs)) w.blockLdlt.analyze(groups, w.pairs);
+  }
+  if (byBlocks ? !w.blockLdlt.factorize(w.diagonal, w.coupling) : !factorizeByEntries(W, n)) {
+    report.status = SolverStatus::NumericalFailure;
+    report.note("LDL^T factorization failed (W singular: redundant rows?)");
+    return;
+  }
+  w.rhs = -p.q;
+  if (byBlocks)
+    w.blockLdlt.solve(w.rhs, w.x);
+  else
+    w.ldlt.solve(w.rhs, w.x);
+  if (!w.x.allFinite()) {
+    report.status = SolverStatus::NumericalFailure;
+    report.note("LDL^T solve not finite (W singular: redundant rows?)");
+    return;
+  }
+  r = w.x;
+  const double e = p.residual(r, w.u);
+  context.record(report, 1, e);
+  report.nativeResidual = e;
+  report.status = e <= context.tolerance() ? SolverStatus::Converged : SolverStatus::Stalled;
+}
+
+bool EqualityLdltSolver::factorizeByEntries(const BlockSparseMatrix& W, int n) const {
   // The lower triangle, straight from the block rows, in a fixed order: the pattern of the last
   // solve is recognised and its analysis (ordering, elimination tree) reused.
   Workspace& w = workspace_;
@@ -37,25 +116,7 @@ void EqualityLdltSolver::solvePrepared(const PreparedProblem& p, const SolveCont
     }
   }
   if (!w.ldlt.analyzed(n, w.rows, w.cols)) w.ldlt.analyze(n, w.rows, w.cols);
-  report.iterations = 1;
-  report.nativeResidualName = "common residual of the direct solve";
-  if (!w.ldlt.factorize(w.values)) {
-    report.status = SolverStatus::NumericalFailure;
-    report.note("LDL^T factorization failed (W singular: redundant rows?)");
-    return;
-  }
-  w.rhs = -p.q;
-  w.ldlt.solve(w.rhs, w.x);
-  if (!w.x.allFinite()) {
-    report.status = SolverStatus::NumericalFailure;
-    report.note("LDL^T solve not finite (W singular: redundant rows?)");
-    return;
-  }
-  r = w.x;
-  const double e = p.residual(r, w.u);
-  context.record(report, 1, e);
-  report.nativeResidual = e;
-  report.status = e <= context.tolerance() ? SolverStatus::Converged : SolverStatus::Stalled;
+  return w.ldlt.factorize(w.values);
 }
 
 }  // namespace coulomb::solvers

@@ -78,3 +78,45 @@ TEST(EqualityLdltSolver, ARedundantRowFallsBackToNewton) {
   EXPECT_LE(out.best.report.residual, 1e-6);
   EXPECT_TRUE(out.best.impulses.allFinite());
 }
+
+TEST(EqualityLdltSolver, RowsInThreesAreSolvedByBlocksAsByEntries) {
+  // A chain of 30 ball joints: rows in threes, joint g coupled with g - 1 and g + 1 by 3 x 3
+  // blocks (W symmetric positive definite); the block path must give the dense answer, and so
+  // must the entry path on the same chain with a 91st row appended (91 rows: not in threes).
+  const auto chainOfBallJoints = [](int rows) {
+    const int joints = 30;
+    Eigen::MatrixXd W = Eigen::MatrixXd::Zero(rows, rows);
+    for (int g = 0; g < joints; ++g) {
+      W.block<3, 3>(3 * g, 3 * g) = Eigen::Matrix3d::Identity() * 4.0;
+      W(3 * g, 3 * g + 1) = W(3 * g + 1, 3 * g) = 0.5;
+      if (g + 1 < joints) {
+        Eigen::Matrix3d c;
+        c << -1.0, 0.2, 0.0, 0.1, -1.0, 0.3, 0.0, -0.2, -1.0;
+        W.block<3, 3>(3 * g + 3, 3 * g) = c;
+        W.block<3, 3>(3 * g, 3 * g + 3) = c.transpose();
+      }
+    }
+    if (rows > 3 * joints) {  // one more row, coupled to the last joint's first row
+      W(rows - 1, rows - 1) = 3.0;
+      W(rows - 1, 3 * joints - 3) = W(3 * joints - 3, rows - 1) = 0.5;
+    }
+    std::vector<MatrixBlockEntry> entries;
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; j < rows; ++j)
+        if (W(i, j) != 0.0 || (i < 3 * joints && j < 3 * joints && std::abs(i / 3 - j / 3) <= 1))
+          entries.push_back({i, j, {W(i, j)}});  // whole 3 x 3 blocks, their zeros included
+    ContactProblem p;
+    p.name = "ball joints";
+    p.q = Eigen::VectorXd::LinSpaced(rows, -1.0, 2.0);
+    p.blocks.assign(rows, ConstraintBlock::equality());
+    p.W = DelassusOperator::blockSparse(BlockSparseMatrix(std::vector<int>(rows, 1), entries));
+    return std::pair{p, W};
+  };
+  for (const int rows : {90, 91}) {
+    const auto [p, W] = chainOfBallJoints(rows);
+    const SolveOutcome out = EqualityLdltSolver().solve(p, {});
+    EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+    const Eigen::VectorXd reference = W.ldlt().solve(-p.q);
+    EXPECT_LT((out.impulses - reference).norm(), 1e-12 * reference.norm()) << rows << " rows";
+  }
+}
