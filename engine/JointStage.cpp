@@ -226,6 +226,39 @@ void JointStage::correctDrift(geometry::BodyState& state, std::span<const std::i
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
+joints::EnergyTarget JointStage::energyTarget(std::span<const std::int32_t> items,
+                                              const joints::Stabilization& worldPolicy,
+                                              const geometry::BodyState& state,
+                                              bool& anchored) const {
+  using joints::EnergyTarget;
+  anchored = false;
+  EnergyTarget target = EnergyTarget::None;
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    const Record& r = records_[static_cast<std::size_t>(items[k])];
+    const joints::Stabilization& policy = policyOf(r, worldPolicy);
+    if (policy.method != joints::StabilizationMethod::PredictedState || r.def.limit.enabled ||
+        r.def.motor.enabled || r.def.friction != 0.0)
+      return EnergyTarget::None;
+    if (k > 0 && policy.predictedState.energy != target) return EnergyTarget::None;
+    target = policy.predictedState.energy;
+    for (const geometry::BodyId& id : {r.def.bodyA, r.def.bodyB}) {
+      if (!id.valid() || state.motionTypes[id.index] == geometry::MotionType::Static)
+        anchored = true;
+      else if (!state.isDynamic(id.index))
+        return EnergyTarget::None;  // a kinematic body drives the island: it does work
+    }
+  }
+  return target;
+}
+
+bool JointStage::projectsEnergy(const joints::Stabilization& worldPolicy) const {
+  return std::any_of(records_.begin(), records_.end(), [&](const Record& r) {
+    const joints::Stabilization& policy = policyOf(r, worldPolicy);
+    return r.alive && !r.broken && policy.method == joints::StabilizationMethod::PredictedState &&
+           policy.predictedState.energy != joints::EnergyTarget::None;
+  });
+}
+
 void JointStage::finishStep(const geometry::BodyState& state, std::span<const std::int32_t> active,
                             double h, JointStepReport& report) {
   for (const std::int32_t item : active) {

@@ -69,6 +69,18 @@ class JointStage final : public RowSource {
   /// Predicted-state correction of the `active` joints whose policy is PredictedState.
   void correctDrift(geometry::BodyState& state, std::span<const std::int32_t> active,
                     const joints::Stabilization& worldPolicy, double h, JointStepReport& report);
+  /// What the island whose joint slots are `items` keeps through the energy projection
+  /// (integrators/EnergyProjection.hpp): its joints' common PredictedStateSettings::energy when
+  /// they are all ideal joints under the predicted-state policy (no limit, motor or friction)
+  /// between dynamic bodies or to the world or static bodies (no kinematic driver), else None.
+  /// `anchored`: some joint holds the island to the world.
+  [[nodiscard]] joints::EnergyTarget energyTarget(std::span<const std::int32_t> items,
+                                                  const joints::Stabilization& worldPolicy,
+                                                  const geometry::BodyState& state,
+                                                  bool& anchored) const;
+  /// Whether some live joint asks for an energy projection (its policy's
+  /// PredictedStateSettings::energy is not None).
+  [[nodiscard]] bool projectsEnergy(const joints::Stabilization& worldPolicy) const;
   /// After the position update: reactions [N], breakage, and the drift left by the step.
   void finishStep(const geometry::BodyState& state, std::span<const std::int32_t> active, double h,
                   JointStepReport& report);

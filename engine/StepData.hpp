@@ -8,6 +8,7 @@
 #include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/RowSource.hpp>
+#include <coulomb/integrators/EnergyProjection.hpp>
 #include <coulomb/joints/RowSet.hpp>
 #include <coulomb/solvers/SolvePlan.hpp>
 #include <coulomb/solvers/SolveWithFallback.hpp>
@@ -57,6 +58,9 @@ struct StepData {
   // (JointStage::stabilizedInverseInertias); unused when `stabilized` is false.
   bool stabilized = false;
   InverseInertias solveInverseInertias;
+  // Per body slot: its energy at the step's start (integrators/EnergyProjection.hpp), recorded
+  // when the world has joints; empty otherwise.
+  std::vector<integrators::BodyEnergy> startEnergies;
 
   [[nodiscard]] const InverseInertias* inverseInertias() const {
     return stabilized ? &solveInverseInertias : nullptr;

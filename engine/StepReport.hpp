@@ -43,6 +43,8 @@ struct JointStepReport {
   double correctionError = 0.0;  // [m or rad] largest predicted error left by the correction
   bool correctionConverged = true;
   double correctionSeconds = 0.0;         // [s] wall clock of the correction
+  int energyProjections = 0;              // islands of ideal joints projected to their energy
+  double largestEnergyCorrection = 0.0;   // [J] largest |energy restored| by one projection
   std::vector<geometry::JointId> broken;  // joints that broke in this step
 };
 

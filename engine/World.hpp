@@ -229,6 +229,8 @@ class World {
   [[nodiscard]] solvers::SolverOptions sweepOptions();
   void correctPenetrations();
   void correctPenetrations(IslandWork& island);
+  void recordStartEnergies();         // E~ of every body at the step's start (energy projection)
+  void projectJointIslandEnergies();  // islands of ideal joints back to their start E~
   void fillIslandReport(const IslandWork& island, IslandReport& report) const;
   /// Adds a StepReport warning when no solver of the island's plan could run (said once per
   /// choice of solvers).

@@ -122,7 +122,7 @@ joints::Stabilization parseStabilization(const JsonNode& node, joints::Stabiliza
     base.method = method(node);
     return base;
   }
-  node.allowOnly({"method", "beta", "slop", "iterations", "tolerance"});
+  node.allowOnly({"method", "beta", "slop", "iterations", "tolerance", "energy"});
   if (node.has("method")) base.method = method(node.child("method"));
   if (node.has("beta")) {
     base.baumgarte.beta = node.child("beta").number();
@@ -137,6 +137,18 @@ joints::Stabilization parseStabilization(const JsonNode& node, joints::Stabiliza
   }
   if (node.has("tolerance"))
     base.predictedState.tolerance = node.child("tolerance").positiveNumber();
+  if (node.has("energy")) {
+    const JsonNode& energy = node.child("energy");
+    const std::string name = energy.string();
+    const auto target = joints::energyTargetFromName(name);
+    if (!target) {
+      std::string message = "unknown energy target '" + name + "'";
+      if (auto s = nearestName(name, {"none", "modified", "exact"}))
+        message += "; did you mean '" + *s + "'?";
+      energy.fail(message + " (none, modified or exact)");
+    }
+    base.predictedState.energy = *target;
+  }
   return base;
 }
 

@@ -115,6 +115,10 @@ void transferSettings(Ar& ar, WorldSettings& s) {
   io(ar, s.jointStabilization.baumgarte.slop);
   io(ar, s.jointStabilization.predictedState.iterations);
   io(ar, s.jointStabilization.predictedState.tolerance);
+  if (ar.version() >= 10)
+    ioEnum(ar, s.jointStabilization.predictedState.energy, joints::EnergyTarget::Exact);
+  else if constexpr (Ar::kLoading)
+    s.jointStabilization.predictedState.energy = joints::EnergyTarget::None;  // as written
   if (ar.version() >= 7)
     ioEnum(ar, s.treeIntegrator, TreeIntegrator::SemiImplicitEuler);
   else if constexpr (Ar::kLoading)

@@ -39,7 +39,7 @@ namespace coulomb::engine::io {
 // SemiImplicitEuler, the integrator they were written with); 8: SolverOptions::
 // sweepPartBlocks (older files restore with 0, the block order they were written with); 9:
 // SolverOptions::stickingStart (older files restore with it off, as they were written).
-inline constexpr std::uint32_t kSnapshotVersion = 9;
+inline constexpr std::uint32_t kSnapshotVersion = 10;
 /// Version 5 files still restore (their touching pairs are empty: pairs touching when the file
 /// was written get a Begin event in the first step after the restore).
 inline constexpr std::uint32_t kOldestReadableVersion = 5;

@@ -23,6 +23,24 @@ std::optional<StabilizationMethod> stabilizationMethodFromName(const std::string
   return std::nullopt;
 }
 
+const char* energyTargetName(EnergyTarget target) {
+  switch (target) {
+    case EnergyTarget::None:
+      return "none";
+    case EnergyTarget::Modified:
+      return "modified";
+    case EnergyTarget::Exact:
+      return "exact";
+  }
+  return "?";
+}
+
+std::optional<EnergyTarget> energyTargetFromName(const std::string& name) {
+  for (auto t : {EnergyTarget::None, EnergyTarget::Modified, EnergyTarget::Exact})
+    if (name == energyTargetName(t)) return t;
+  return std::nullopt;
+}
+
 std::optional<std::string> Stabilization::validate() const {
   if (!(baumgarte.beta >= 0.0 && baumgarte.beta <= 1.0))
     return "baumgarte beta must be in [0, 1] (got " + std::to_string(baumgarte.beta) + ")";

@@ -11,11 +11,12 @@ constexpr double kGravity = 9.81;    // [m/s^2]
 }  // namespace
 
 BallChain buildBallChain(int links, double timeStep, const std::string& solver,
-                         joints::StabilizationMethod policy) {
+                         joints::StabilizationMethod policy, joints::EnergyTarget energy) {
   engine::WorldSettings settings;
   settings.timeStep = timeStep;
   settings.solve.choice = coulomb::solvers::solverChoice(solver);
   settings.jointStabilization.method = policy;
+  settings.jointStabilization.predictedState.energy = energy;
   BallChain chain{engine::World(settings), {}};
   geometry::BodyId parent;
   for (int i = 0; i < links; ++i) {

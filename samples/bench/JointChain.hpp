@@ -16,7 +16,8 @@ struct BallChain {
 
 /// `links` links along +x from the origin, the first hung from a world point at the origin.
 BallChain buildBallChain(int links, double timeStep, const std::string& solver,
-                         joints::StabilizationMethod policy);
+                         joints::StabilizationMethod policy,
+                         joints::EnergyTarget energy = joints::EnergyTarget::None);
 
 /// Largest anchor separation over the chain's joints [m].
 double maxAnchorGap(const BallChain& chain);
