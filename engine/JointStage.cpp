@@ -228,10 +228,11 @@ void JointStage::correctDrift(geometry::BodyState& state, std::span<const std::i
 
 joints::EnergyTarget JointStage::energyTarget(std::span<const std::int32_t> items,
                                               const joints::Stabilization& worldPolicy,
-                                              const geometry::BodyState& state,
-                                              bool& anchored) const {
+                                              const geometry::BodyState& state, bool& anchored,
+                                              double& tolerance) const {
   using joints::EnergyTarget;
   anchored = false;
+  tolerance = 0.0;
   EnergyTarget target = EnergyTarget::None;
   for (std::size_t k = 0; k < items.size(); ++k) {
     const Record& r = records_[static_cast<std::size_t>(items[k])];
@@ -241,6 +242,7 @@ joints::EnergyTarget JointStage::energyTarget(std::span<const std::int32_t> item
       return EnergyTarget::None;
     if (k > 0 && policy.predictedState.energy != target) return EnergyTarget::None;
     target = policy.predictedState.energy;
+    tolerance = std::max(tolerance, policy.predictedState.tolerance);
     for (const geometry::BodyId& id : {r.def.bodyA, r.def.bodyB}) {
       if (!id.valid() || state.motionTypes[id.index] == geometry::MotionType::Static)
         anchored = true;
@@ -257,6 +259,68 @@ bool JointStage::projectsEnergy(const joints::Stabilization& worldPolicy) const 
     return r.alive && !r.broken && policy.method == joints::StabilizationMethod::PredictedState &&
            policy.predictedState.energy != joints::EnergyTarget::None;
   });
+}
+
+bool JointStage::boundaryVelocities(std::span<const std::int32_t> items,
+                                    const geometry::BodyState& state,
+                                    std::span<const geometry::Pose> poses,
+                                    std::span<const Eigen::Vector3d> linear,
+                                    std::span<const Eigen::Vector3d> angular,
+                                    std::vector<Eigen::Vector3d>& out) const {
+  out.resize(poses.size());
+  reached_.assign(poses.size(), 0);
+  const auto worldAnchor = [&](const geometry::BodyId& id, const joints::JointFrame& frame) {
+    return id.valid() ? Eigen::Vector3d(poses[id.index].apply(frame.anchor)) : frame.anchor;
+  };
+  const auto ground = [&](const geometry::BodyId& id) {  // the world or a static body
+    return !id.valid() || state.motionTypes[id.index] == geometry::MotionType::Static;
+  };
+  std::int32_t lowest = -1;
+  for (const std::int32_t item : items) {
+    const joints::JointDef& def = records_[static_cast<std::size_t>(item)].def;
+    if (def.type == joints::JointType::Prismatic) return false;
+    for (const geometry::BodyId& id : {def.bodyA, def.bodyB})
+      if (id.valid() && !ground(id) && (lowest < 0 || static_cast<std::int32_t>(id.index) < lowest))
+        lowest = static_cast<std::int32_t>(id.index);
+  }
+  // Bodies held to the ground first.
+  bool anchored = false;
+  for (const std::int32_t item : items) {
+    const joints::JointDef& def = records_[static_cast<std::size_t>(item)].def;
+    const bool groundA = ground(def.bodyA), groundB = ground(def.bodyB);
+    if (groundA == groundB) continue;
+    const geometry::BodyId body = groundA ? def.bodyB : def.bodyA;
+    const joints::JointFrame& frame = groundA ? def.frameB : def.frameA;
+    const std::uint32_t i = body.index;
+    if (reached_[i] != 0) continue;
+    out[i] = angular[i].cross(poses[i].position - worldAnchor(body, frame));
+    reached_[i] = 1;
+    anchored = true;
+  }
+  if (!anchored) {
+    if (lowest < 0) return true;
+    out[lowest] = linear[lowest];
+    reached_[lowest] = 1;
+  }
+  // Across the joints until nothing new is reached (one pass for a chain listed from its anchor).
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (const std::int32_t item : items) {
+      const joints::JointDef& def = records_[static_cast<std::size_t>(item)].def;
+      if (!def.bodyA.valid() || !def.bodyB.valid()) continue;
+      const std::uint32_t a = def.bodyA.index, b = def.bodyB.index;
+      if ((reached_[a] != 0) == (reached_[b] != 0)) continue;
+      const bool fromA = reached_[a] != 0;
+      const std::uint32_t known = fromA ? a : b, next = fromA ? b : a;
+      const Eigen::Vector3d p =
+          fromA ? worldAnchor(def.bodyB, def.frameB) : worldAnchor(def.bodyA, def.frameA);
+      out[next] = out[known] + angular[known].cross(p - poses[known].position) +
+                  angular[next].cross(poses[next].position - p);
+      reached_[next] = 1;
+      progress = true;
+    }
+  }
+  return true;
 }
 
 void JointStage::finishStep(const geometry::BodyState& state, std::span<const std::int32_t> active,

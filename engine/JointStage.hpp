@@ -73,14 +73,30 @@ class JointStage final : public RowSource {
   /// (integrators/EnergyProjection.hpp): its joints' common PredictedStateSettings::energy when
   /// they are all ideal joints under the predicted-state policy (no limit, motor or friction)
   /// between dynamic bodies or to the world or static bodies (no kinematic driver), else None.
-  /// `anchored`: some joint holds the island to the world.
+  /// `anchored`: some joint holds the island to the world; `tolerance`: the largest correction
+  /// tolerance of its joints [m].
   [[nodiscard]] joints::EnergyTarget energyTarget(std::span<const std::int32_t> items,
                                                   const joints::Stabilization& worldPolicy,
-                                                  const geometry::BodyState& state,
-                                                  bool& anchored) const;
+                                                  const geometry::BodyState& state, bool& anchored,
+                                                  double& tolerance) const;
   /// Whether some live joint asks for an energy projection (its policy's
   /// PredictedStateSettings::energy is not None).
   [[nodiscard]] bool projectsEnergy(const joints::Stabilization& worldPolicy) const;
+  /// The linear velocities u that the bodies' angular velocities give through the joints of
+  /// `items` at the poses `poses` (`state` for the bodies' motion types): from a body held to the
+  /// world or a static body at anchor p, u = omega x (x - p); across a joint from a body with u
+  /// known, u_B = u_A + omega_A x (p - x_A)
+  /// + omega_B x (x_B - p); a free island starts from its lowest body's own linear velocity. This
+  /// is the tangent velocity of the step boundary at the generalized rates of the step, where the
+  /// chord velocity of the SHAKE step dips by h/2 omega x (omega x r) (the O(h^2) term of the
+  /// modified energy, integrators/EnergyProjection.hpp). Written into `out` per body slot for the
+  /// bodies the joints reach; false (out unspecified) when a prismatic joint is among them (its
+  /// slide is a rate of its own).
+  bool boundaryVelocities(std::span<const std::int32_t> items, const geometry::BodyState& state,
+                          std::span<const geometry::Pose> poses,
+                          std::span<const Eigen::Vector3d> linear,
+                          std::span<const Eigen::Vector3d> angular,
+                          std::vector<Eigen::Vector3d>& out) const;
   /// After the position update: reactions [N], breakage, and the drift left by the step.
   void finishStep(const geometry::BodyState& state, std::span<const std::int32_t> active, double h,
                   JointStepReport& report);
@@ -108,6 +124,7 @@ class JointStage final : public RowSource {
     Eigen::Matrix3d stiffness;
   };
   mutable std::vector<StiffnessTerm> stiffnessTerms_;  // stabilizedInverseInertias, kept
+  mutable std::vector<std::uint8_t> reached_;          // boundaryVelocities, per body slot
   // The predicted-state correction's joints, workspace and result, kept between steps.
   std::vector<const joints::JointDef*> correctionDefs_;
   std::vector<std::uint32_t> correctionSlots_;

@@ -8,7 +8,7 @@
 #include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/RowSource.hpp>
-#include <coulomb/integrators/EnergyProjection.hpp>
+#include <coulomb/geometry/Pose.hpp>
 #include <coulomb/joints/RowSet.hpp>
 #include <coulomb/solvers/SolvePlan.hpp>
 #include <coulomb/solvers/SolveWithFallback.hpp>
@@ -60,7 +60,10 @@ struct StepData {
   InverseInertias solveInverseInertias;
   // Per body slot: its energy at the step's start (integrators/EnergyProjection.hpp), recorded
   // when the world has joints; empty otherwise.
-  std::vector<integrators::BodyEnergy> startEnergies;
+  std::vector<double> startEnergies;
+  std::vector<geometry::Pose> startPoses;  // the same bodies' poses and velocities
+  std::vector<Eigen::Vector3d> startLinearVelocities, startAngularVelocities;
+  std::vector<Eigen::Vector3d> powerVelocities;  // scratch of the energy projection
 
   [[nodiscard]] const InverseInertias* inverseInertias() const {
     return stabilized ? &solveInverseInertias : nullptr;

@@ -6,7 +6,6 @@
 #include <coulomb/engine/ImpulseApplier.hpp>
 #include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/World.hpp>
-#include <coulomb/integrators/EnergyProjection.hpp>
 #include <coulomb/integrators/FreeMotion.hpp>
 #include <coulomb/integrators/PositionUpdate.hpp>
 #include <coulomb/solvers/SolverChooser.hpp>
@@ -259,40 +258,6 @@ void World::applyImpulses(IslandWork& island) {
   const RowContext context = rowContext();
   for (const RowOwner owner : {kJointRows, kContactRows, kTreeRows})
     rowSource(owner).storeImpulses(island.rows, island.blocks[owner], slots, r, context);
-}
-
-void World::recordStartEnergies() {
-  step_.startEnergies.clear();
-  if (!joints_.projectsEnergy(settings_.jointStabilization)) return;
-  step_.startEnergies.resize(state_.size());
-  for (std::size_t i = 0; i < state_.size(); ++i)
-    step_.startEnergies[i] = integrators::bodyEnergy(state_, i, settings_.gravity);
-}
-
-void World::projectJointIslandEnergies() {
-  if (step_.startEnergies.empty() || !report_.joints.correctionConverged) return;
-  for (const IslandWork& island : step_.work) {
-    if (!island.items[kContactRows].empty() || !island.items[kTreeRows].empty()) continue;
-    bool anchored = false;
-    const joints::EnergyTarget energy = joints_.energyTarget(
-        island.items[kJointRows], settings_.jointStabilization, state_, anchored);
-    if (energy == joints::EnergyTarget::None) continue;
-    const double powerWeight = energy == joints::EnergyTarget::Modified ? 0.5 * step_.h : 0.0;
-    double target = 0.0;
-    bool forced = false;
-    for (const std::int32_t i : island.island.bodies) {
-      target += step_.startEnergies[i].energy + powerWeight * step_.startEnergies[i].gravityPower;
-      forced = forced || articulations_.isLink(i) || !state_.forces[i].isZero(0.0) ||
-               !state_.torques[i].isZero(0.0);
-    }
-    if (forced) continue;  // applied forces do work the projection cannot know
-    const integrators::EnergyProjection projection = integrators::projectEnergy(
-        state_, island.island.bodies, anchored, target, settings_.gravity, powerWeight);
-    if (!projection.applied) continue;
-    ++report_.joints.energyProjections;
-    report_.joints.largestEnergyCorrection =
-        std::max(report_.joints.largestEnergyCorrection, std::abs(projection.energyError));
-  }
 }
 
 void World::correctPenetrations() {

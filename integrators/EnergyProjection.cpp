@@ -2,16 +2,16 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 
 namespace coulomb::integrators {
 
-BodyEnergy bodyEnergy(const geometry::BodyState& state, std::size_t body,
-                      const Eigen::Vector3d& gravity) {
-  if (!state.isDynamic(body) || !(state.inverseMasses[body] > 0.0)) return {};
-  const double mass = 1.0 / state.inverseMasses[body];
-  return {state.kineticEnergy(body) - mass * gravity.dot(state.poses[body].position),
-          mass * gravity.dot(state.linearVelocities[body])};
+double bodyEnergy(const geometry::BodyState& state, std::size_t body,
+                  const Eigen::Vector3d& gravity) {
+  if (!state.isDynamic(body) || !(state.inverseMasses[body] > 0.0)) return 0.0;
+  return state.kineticEnergy(body) -
+         gravity.dot(state.poses[body].position) / state.inverseMasses[body];
 }
 
 namespace {
@@ -62,30 +62,40 @@ RigidMotion rigidMotionOf(const geometry::BodyState& state, std::span<const std:
 
 EnergyProjection projectEnergy(geometry::BodyState& state, std::span<const std::int32_t> bodies,
                                bool anchored, double target, const Eigen::Vector3d& gravity,
-                               double powerWeight) {
+                               double powerWeight, std::span<const Eigen::Vector3d> powerVelocities,
+                               double resolution) {
+  const auto u = [&](std::int32_t i) -> const Eigen::Vector3d& {
+    return powerVelocities.empty() ? state.linearVelocities[i] : powerVelocities[i];
+  };
   EnergyProjection result;
   double current = 0.0;
-  for (const std::int32_t i : bodies) {
-    const BodyEnergy e = bodyEnergy(state, i, gravity);
-    current += e.energy + powerWeight * e.gravityPower;
-  }
+  for (const std::int32_t i : bodies)
+    current +=
+        bodyEnergy(state, i, gravity) + powerWeight * gravity.dot(u(i)) / state.inverseMasses[i];
   result.energyError = target - current;
+  if (std::abs(result.energyError) <= resolution) return result;
   const RigidMotion rigid = anchored ? RigidMotion{} : rigidMotionOf(state, bodies);
   // E~(s) = a s^2 + b s + c for relative velocities scaled by s (the rigid part's energy and its
-  // momentum term are in c; a free island's relative motion has no momentum, so b = 0 there).
+  // power term are in c). u of a rigid motion is that motion's velocity field, and u is linear in
+  // the velocities, so the relative part of u scales with s too.
   double a = 0.0, b = 0.0;
   for (const std::int32_t i : bodies) {
     const double m = 1.0 / state.inverseMasses[i];
-    const Eigen::Vector3d v = state.linearVelocities[i] - rigid.velocityAt(state.poses[i].position);
+    const Eigen::Vector3d rigidVelocity = rigid.velocityAt(state.poses[i].position);
+    const Eigen::Vector3d v = state.linearVelocities[i] - rigidVelocity;
     const Eigen::Vector3d w = state.angularVelocities[i] - rigid.angular;
     a += 0.5 * m * v.squaredNorm() + 0.5 * w.dot(worldInertia(state, i) * w);
-    b += powerWeight * m * gravity.dot(v);
+    b += powerWeight * m * gravity.dot(u(i) - rigidVelocity);
   }
   const double c = current - a - b;  // E~(1) = current
+  if (!(a > 0.0)) return result;     // nothing moves relative to the rigid motion
+  // The larger root of E~(s) = target; below the parabola's vertex, the vertex (the nearest).
   const double discriminant = b * b - 4.0 * a * (c - target);
-  if (!(a > 0.0) || !(discriminant >= 0.0)) return result;
-  const double scale = (-b + std::sqrt(discriminant)) / (2.0 * a);
-  if (!(std::abs(scale - 1.0) <= kMaxProjectionChange)) return result;
+  const double root =
+      discriminant >= 0.0 ? (-b + std::sqrt(discriminant)) / (2.0 * a) : -b / (2.0 * a);
+  if (!std::isfinite(root)) return result;
+  const double scale = std::clamp(root, kMinProjectionScale, kMaxProjectionScale);
+  result.partial = scale != root || discriminant < 0.0;
   for (const std::int32_t i : bodies) {
     const Eigen::Vector3d base = rigid.velocityAt(state.poses[i].position);
     state.linearVelocities[i] = base + scale * (state.linearVelocities[i] - base);

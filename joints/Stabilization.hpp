@@ -58,11 +58,9 @@ struct PredictedStateSettings {
   /// [m or rad] Stop when every predicted joint error is below this. Default 1e-10: far below
   /// any visible gap, and about the round-off of a 100-link chain's anchor positions.
   double tolerance = 1e-10;
-  /// Default None: the step as it is, whose phase is right where it resolves the motion (a
-  /// double pendulum's modes within 1e-4 at dt 0.01). Modified keeps a whipping chain's energy
-  /// within 2 % at dt 0.01 but moves fast modes by up to 3e-3 of their period there
-  /// (docs/tuning.md, "Chains keep their energy").
-  EnergyTarget energy = EnergyTarget::None;
+  /// Default Modified: chains and ragdolls keep their energy at game time steps, pendulums their
+  /// period (docs/tuning.md, "Chains keep their energy").
+  EnergyTarget energy = EnergyTarget::Modified;
 };
 
 struct Stabilization {

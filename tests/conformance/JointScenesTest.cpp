@@ -185,9 +185,9 @@ TEST(JointScenes, FourBarRssrFollowsFreudenstein) {
   EXPECT_LT(run.theta4Error, 1e-4);
 }
 
-// docs/scene-specifications.md A6 maximal at dt 0.01, 10 s: gap and energy (S = m g L N^2 / 2)
-// measured and printed; the asserted bounds are what the engine meets today (docs/tuning.md: the
-// target is gap < 1e-4 m and loss < 10 %).
+// docs/scene-specifications.md A6 maximal at dt 0.01, 10 s: gap < 1e-4 m and energy within 10 %
+// (S = m g L N^2 / 2), met with the default energy projection (docs/tuning.md, "Chains keep their
+// energy"); without it chain_10 lost 50-90 % and chain_50 36-41 %.
 TEST(JointScenes, ChainsStayConnected) {
   for (const auto& [name, links] : {std::pair{"chain_10", 10}, std::pair{"chain_50", 50}}) {
     Loaded scene = load(name);
@@ -205,12 +205,8 @@ TEST(JointScenes, ChainsStayConnected) {
         "%s dt 0.01, %d steps: max_joint_gap %.2e m, mean of max gap %.2e, "
         "energy_drift_end %.3f\n",
         name, steps, gap, gapSum / steps, drift);
-    // docs/scene-specifications.md A6's gap target is met (the predicted-state correction closes
-    // every step); its energy target (loss < 10 %) is not: chain_10 loses ~60-70 % like the peers
-    // (57-90 %), chain_50 ~36 % (peers tear). The energy bounds are the measured figures with a
-    // margin.
     EXPECT_LT(gap, 1e-4) << name;
-    EXPECT_GT(drift, links == 10 ? -0.85 : -0.5) << name << " lost more than measured";
+    EXPECT_GT(drift, -0.1) << name << " lost energy";
     EXPECT_LT(drift, 0.1) << name << " gained energy";
   }
 }

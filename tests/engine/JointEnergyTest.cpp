@@ -60,8 +60,9 @@ ChainRun runChain(int links, joints::EnergyTarget energy, double h, int steps) {
 }  // namespace
 
 // A6 at dt 0.01 over 10 s: the step alone loses 40-90 % of the released energy (chaotic in the
-// figure, never less than a third); with the modified target the energy stays within a few % of
-// its start all the way (the O(h) oscillation of symplectic Euler), and the joints stay closed.
+// figure, never less than a third); with the modified target (the default) the energy ends within
+// a few % of its start and never drifts (E itself swings by O(h) around E~: up to +7 % of S at a
+// whip of chain_10, measured), and the joints stay closed.
 TEST(JointEnergy, ChainsKeepTheirEnergyAtDt001WithTheModifiedTarget) {
   const ChainRun plain = runChain(10, joints::EnergyTarget::None, 0.01, 1000);
   EXPECT_LT(plain.endDrift, -0.3) << "the step without projection loses a third or more";
@@ -70,8 +71,8 @@ TEST(JointEnergy, ChainsKeepTheirEnergyAtDt001WithTheModifiedTarget) {
     const ChainRun run = runChain(links, joints::EnergyTarget::Modified, 0.01, 1000);
     EXPECT_LT(run.gap, 1e-6) << links;
     EXPECT_GT(run.minDrift, -0.05) << links;
-    EXPECT_LT(run.maxDrift, 0.05) << links;
-    EXPECT_LT(std::abs(run.endDrift), 0.05) << links;
+    EXPECT_LT(run.maxDrift, 0.1) << links;
+    EXPECT_LT(std::abs(run.endDrift), 0.03) << links;
     EXPECT_GT(run.projectedSteps, 900) << links << ": turning points may be skipped, little else";
   }
 }
@@ -148,8 +149,8 @@ TEST(JointEnergy, ProjectionKeepsMomentumAndTheJointOfAFreeIsland) {
   const auto modified = [&] {
     double e = 0.0;
     for (std::size_t i = 0; i < 2; ++i) {
-      const integrators::BodyEnergy b = integrators::bodyEnergy(state, i, g);
-      e += b.energy + weight * b.gravityPower;
+      e += integrators::bodyEnergy(state, i, g) +
+           weight * g.dot(state.linearVelocities[i]) / state.inverseMasses[i];
     }
     return e;
   };
@@ -174,10 +175,17 @@ TEST(JointEnergy, ProjectionKeepsMomentumAndTheJointOfAFreeIsland) {
   // Anchored, everything scales: the same target is met with another factor.
   geometry::BodyState anchored = state;
   EXPECT_TRUE(integrators::projectEnergy(anchored, bodies, true, target + 0.01, g, weight).applied);
-  // A correction the kinetic energy cannot carry is refused and leaves the state alone.
-  const Eigen::Vector3d before = state.linearVelocities[1];
-  EXPECT_FALSE(integrators::projectEnergy(state, bodies, false, target - 1e3, g, weight).applied);
-  EXPECT_EQ(state.linearVelocities[1], before);
+  // A correction the kinetic energy cannot carry is made as far as the bound on the speeds allows:
+  // halved, in the right direction, with momentum still kept.
+  const integrators::EnergyProjection partial =
+      integrators::projectEnergy(state, bodies, false, target - 1e3, g, weight);
+  EXPECT_TRUE(partial.applied);
+  EXPECT_TRUE(partial.partial);
+  EXPECT_EQ(partial.scale, integrators::kMinProjectionScale);
+  EXPECT_LT(modified(), target);
+  momenta(p1, l1);
+  EXPECT_LT((p1 - p0).norm(), 1e-12);
+  EXPECT_LT((l1 - l0).norm(), 1e-12);
 }
 
 // Work done on the island by something the projection cannot see: no projection.
