@@ -307,7 +307,7 @@ bool JointStage::boundaryVelocities(std::span<const std::int32_t> items,
     progress = false;
     for (const std::int32_t item : items) {
       const joints::JointDef& def = records_[static_cast<std::size_t>(item)].def;
-      if (!def.bodyA.valid() || !def.bodyB.valid()) continue;
+      if (ground(def.bodyA) || ground(def.bodyB)) continue;  // reached from the anchors above
       const std::uint32_t a = def.bodyA.index, b = def.bodyB.index;
       if ((reached_[a] != 0) == (reached_[b] != 0)) continue;
       const bool fromA = reached_[a] != 0;

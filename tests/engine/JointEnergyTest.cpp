@@ -4,6 +4,7 @@
 // phase, a free island keeps its momentum, and islands with a driver, a limit or an applied force
 // are left alone.
 #include <gtest/gtest.h>
+#include <coulomb/engine/JointStage.hpp>
 #include <coulomb/integrators/EnergyProjection.hpp>
 #include <coulomb/io/SceneLoader.hpp>
 
@@ -255,4 +256,61 @@ TEST(JointEnergy, SceneFilesSetTheTargetAndNamesAreChecked) {
   const std::string error = coulomb::test::sceneErrorOf(withEnergy("\"modifed\""));
   EXPECT_CONTAINS(error, "test.json");
   EXPECT_CONTAINS(error, "did you mean 'modified'");
+}
+
+// The tangent velocities of a boundary (JointStage::boundaryVelocities): for velocities that
+// satisfy the joints exactly (a chain turning rigidly about its anchor, a free chain in rigid
+// motion) they are the bodies' own velocities, whatever order the joints are listed in; a
+// prismatic joint is not covered.
+TEST(JointEnergy, BoundaryVelocitiesOfJointConsistentMotionAreTheVelocities) {
+  geometry::BodyState state;
+  engine::JointStage stage;
+  const Eigen::Vector3d omega(0.3, -1.1, 0.7);
+  std::vector<std::int32_t> items;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d x((i + 0.5) * 0.1, 0.02 * i, 0.0);
+    state.assign(static_cast<std::size_t>(i), geometry::MotionType::Dynamic,
+                 geometry::Pose::translation(x), omega.cross(x), omega, 0.1,
+                 Eigen::Vector3d(1e-5, 1e-4, 1e-4).asDiagonal());
+    joints::JointDef def;
+    def.type = i == 1 ? joints::JointType::Hinge : joints::JointType::Ball;
+    def.bodyA =
+        i == 0 ? geometry::BodyId{} : geometry::BodyId{static_cast<std::uint32_t>(i - 1), 0};
+    def.bodyB = {static_cast<std::uint32_t>(i), 0};
+    const Eigen::Vector3d anchor(0.1 * i, 0.02 * i - 0.01 * (i > 0), 0.0);
+    def.frameA.anchor = i == 0 ? anchor : Eigen::Vector3d(anchor - state.poses[i - 1].position);
+    def.frameB.anchor = anchor - x;
+    items.push_back(static_cast<std::int32_t>(stage.create(def).index));
+  }
+  std::vector<Eigen::Vector3d> u;
+  for (const bool reversed : {false, true}) {
+    std::vector<std::int32_t> order = items;
+    if (reversed) std::reverse(order.begin(), order.end());
+    ASSERT_TRUE(stage.boundaryVelocities(order, state, state.poses, state.linearVelocities,
+                                         state.angularVelocities, u));
+    for (std::size_t i = 0; i < 3; ++i)
+      EXPECT_LT((u[i] - state.linearVelocities[i]).norm(), 1e-14) << i << " reversed " << reversed;
+  }
+  // The same chain cut from the world (its first joint removed) and moving rigidly with an extra
+  // translation: a free island, started from its lowest body's own velocity.
+  stage.remove({static_cast<std::uint32_t>(items[0]), 0});
+  const Eigen::Vector3d drift(0.4, 0.0, -2.0);
+  for (std::size_t i = 0; i < 3; ++i) state.linearVelocities[i] += drift;
+  ASSERT_TRUE(stage.boundaryVelocities({items.begin() + 1, items.end()}, state, state.poses,
+                                       state.linearVelocities, state.angularVelocities, u));
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_LT((u[i] - state.linearVelocities[i]).norm(), 1e-14) << i;
+  // With the chain's own angular velocities changed, u follows the angular velocities, not the
+  // bodies' linear ones (which no longer agree with the joints).
+  state.angularVelocities[2] *= 2.0;
+  ASSERT_TRUE(stage.boundaryVelocities({items.begin() + 1, items.end()}, state, state.poses,
+                                       state.linearVelocities, state.angularVelocities, u));
+  EXPECT_GT((u[2] - state.linearVelocities[2]).norm(), 1e-3);
+  joints::JointDef slider;
+  slider.type = joints::JointType::Prismatic;
+  slider.bodyB = {0, 0};
+  const std::int32_t prismatic = static_cast<std::int32_t>(stage.create(slider).index);
+  const std::vector<std::int32_t> withSlider = {items[1], prismatic};
+  EXPECT_FALSE(stage.boundaryVelocities(withSlider, state, state.poses, state.linearVelocities,
+                                        state.angularVelocities, u));
 }
