@@ -109,7 +109,9 @@ void StatsJson::writeStep(const engine::StepReport& report, double stepSeconds) 
                                  {"max_angular_error", report.joints.maxAngularError},
                                  {"correction_iterations", report.joints.correctionIterations},
                                  {"correction_error", report.joints.correctionError},
-                                 {"correction_converged", report.joints.correctionConverged}}}};
+                                 {"correction_converged", report.joints.correctionConverged},
+                                 {"energy_projections", report.joints.energyProjections},
+                                 {"energy_restored", report.joints.largestEnergyCorrection}}}};
   out_ << (firstStep_ ? "\n    " : ",\n    ") << step.dump();
   firstStep_ = false;
 }

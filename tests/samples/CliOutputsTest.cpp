@@ -187,7 +187,13 @@ TEST_F(CliOutputs, JointDriftIsReportedByRunStatsAndCompare) {
     EXPECT_EQ(joints.at("count").get<int>(), 1);
     EXPECT_LT(joints.at("max_linear_error").get<double>(), 1e-6) << joints.dump();
     EXPECT_TRUE(joints.at("correction_converged").get<bool>()) << joints.dump();
+    EXPECT_LE(joints.at("energy_projections").get<int>(), 1) << joints.dump();  // one island
   }
+  // The swinging pendulum's island is projected back to its energy on most steps (default).
+  int projected = 0;
+  for (const auto& step : stats.at("per_step"))
+    projected += step.at("joints").at("energy_projections").get<int>();
+  EXPECT_GT(projected, 25);
   const double runGap = stats.at("joints").at("max_linear_error").get<double>();
   EXPECT_GT(runGap, 0.0);
   EXPECT_LT(runGap, 1e-6);
