@@ -139,6 +139,7 @@ py::dict reportDict(const engine::StepReport& r) {
   d["islands"] = islands;
   d["max_joint_gap"] = r.joints.maxLinearError;
   d["correction_iterations"] = r.joints.correctionIterations;
+  d["energy_projections"] = r.joints.energyProjections;
   d["warnings"] = r.warnings;
   d["seconds"] = r.seconds;
   return d;
