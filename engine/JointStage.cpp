@@ -268,7 +268,20 @@ bool JointStage::boundaryVelocities(std::span<const std::int32_t> items,
                                     std::span<const Eigen::Vector3d> angular,
                                     std::vector<Eigen::Vector3d>& out) const {
   out.resize(poses.size());
-  reached_.assign(poses.size(), 0);
+  if (reached_.size() < poses.size()) reached_.resize(poses.size(), 0);
+  // Only the island's entries are marked, and cleared again on the way out: a world of many
+  // small islands pays for each island's joints, not for all its bodies.
+  struct ClearMarks {
+    const JointStage& stage;
+    std::span<const std::int32_t> items;
+    ~ClearMarks() {
+      for (const std::int32_t item : items)
+        for (const geometry::BodyId& id :
+             {stage.records_[static_cast<std::size_t>(item)].def.bodyA,
+              stage.records_[static_cast<std::size_t>(item)].def.bodyB})
+          if (id.valid()) stage.reached_[id.index] = 0;
+    }
+  } clearMarks{*this, items};
   const auto worldAnchor = [&](const geometry::BodyId& id, const joints::JointFrame& frame) {
     return id.valid() ? Eigen::Vector3d(poses[id.index].apply(frame.anchor)) : frame.anchor;
   };
