@@ -73,7 +73,10 @@ EnergyProjection projectEnergy(geometry::BodyState& state, std::span<const std::
     current +=
         bodyEnergy(state, i, gravity) + powerWeight * gravity.dot(u(i)) / state.inverseMasses[i];
   result.energyError = target - current;
-  if (std::abs(result.energyError) <= resolution) return result;
+  // Within the joints' resolution there is nothing to restore; a non-finite energy (a body the
+  // World's guard is about to isolate) gives no factor either.
+  if (!std::isfinite(result.energyError) || std::abs(result.energyError) <= resolution)
+    return result;
   const RigidMotion rigid = anchored ? RigidMotion{} : rigidMotionOf(state, bodies);
   // E~(s) = a s^2 + b s + c for relative velocities scaled by s (the rigid part's energy and its
   // power term are in c). u of a rigid motion is that motion's velocity field, and u is linear in

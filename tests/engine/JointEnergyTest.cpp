@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 using namespace coulomb;
@@ -187,6 +188,13 @@ TEST(JointEnergy, ProjectionKeepsMomentumAndTheJointOfAFreeIsland) {
   momenta(p1, l1);
   EXPECT_LT((p1 - p0).norm(), 1e-12);
   EXPECT_LT((l1 - l0).norm(), 1e-12);
+  // A non-finite target (bad state upstream) changes nothing.
+  const geometry::BodyState kept = state;
+  EXPECT_FALSE(integrators::projectEnergy(state, bodies, false,
+                                          std::numeric_limits<double>::quiet_NaN(), g, weight)
+                   .applied);
+  EXPECT_EQ(state.linearVelocities[1], kept.linearVelocities[1]);
+  EXPECT_EQ(state.angularVelocities[0], kept.angularVelocities[0]);
 }
 
 // Work done on the island by something the projection cannot see: no projection.
