@@ -134,7 +134,7 @@ struct FclEntry {
   bool hasFat = false;
   bool isPlane = false;
   bool isMesh = false;
-  std::vector<std::uint8_t> activeEdges;  // a mesh's (MeshEdges.hpp)
+  MeshSurface surface;  // a mesh's edges and patches (MeshEdges.hpp)
 
   void build(const std::shared_ptr<const Shape>& newShape, const std::string& who) {
     if (!newShape) throw std::invalid_argument(who + ": has no shape");
@@ -142,7 +142,7 @@ struct FclEntry {
     shape = newShape;
     isPlane = std::holds_alternative<Plane>(*shape);
     isMesh = std::holds_alternative<TriangleMesh>(*shape);
-    if (isMesh) activeEdges = activeEdgeFlags(std::get<TriangleMesh>(*shape));
+    if (isMesh) surface = meshSurface(std::get<TriangleMesh>(*shape));
     try {
       geometry = makeGeometry(*shape, who);
     } catch (const std::invalid_argument&) {
@@ -295,9 +295,9 @@ Aabb FclScene::worldAabb(ColliderId id) const {
   return {box.min_, box.max_};
 }
 
-const std::vector<std::uint8_t>* FclScene::meshActiveEdges(ColliderId id) const {
+const MeshSurface* FclScene::meshSurface(ColliderId id) const {
   const Impl::Entry& entry = impl_->at(id);
-  return entry.isMesh ? &entry.activeEdges : nullptr;
+  return entry.isMesh ? &entry.surface : nullptr;
 }
 
 void FclScene::meshTrianglesNear(ColliderId mesh, const Aabb& box, std::vector<int>& out) const {

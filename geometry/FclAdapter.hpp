@@ -19,6 +19,8 @@
 
 namespace coulomb::geometry {
 
+struct MeshSurface;  // MeshEdges.hpp
+
 struct Aabb {
   Eigen::Vector3d min = Eigen::Vector3d::Zero();
   Eigen::Vector3d max = Eigen::Vector3d::Zero();
@@ -102,9 +104,9 @@ class FclScene {
   /// into `pairs` (cleared first; its capacity is reused, so a steady step does not allocate).
   void overlappingPairs(std::vector<std::pair<ColliderId, ColliderId>>& pairs) const;
   [[nodiscard]] Aabb worldAabb(ColliderId id) const;
-  /// A mesh collider's active-edge flags (MeshEdges.hpp: bit k of triangle t set = its edge k
-  /// is a real crease or a boundary), computed once in upsert; nullptr for other shapes.
-  [[nodiscard]] const std::vector<std::uint8_t>* meshActiveEdges(ColliderId id) const;
+  /// A mesh collider's active edges and smooth patches (MeshEdges.hpp), computed once in
+  /// upsert; nullptr for other shapes.
+  [[nodiscard]] const MeshSurface* meshSurface(ColliderId id) const;
   /// The triangles of a mesh collider whose bounding boxes overlap the world box `box` (from its
   /// BVH; a superset of the touching ones), ascending, into `out` (cleared first).
   void meshTrianglesNear(ColliderId mesh, const Aabb& box, std::vector<int>& out) const;

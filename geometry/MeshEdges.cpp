@@ -8,9 +8,24 @@
 
 namespace coulomb::geometry {
 
-std::vector<std::uint8_t> activeEdgeFlags(const TriangleMesh& mesh) {
+namespace {
+
+// Union-find root with path halving; roots are the lowest index of their set.
+std::uint32_t root(std::vector<std::uint32_t>& parent, std::uint32_t t) {
+  while (parent[t] != t) t = parent[t] = parent[parent[t]];
+  return t;
+}
+
+}  // namespace
+
+MeshSurface meshSurface(const TriangleMesh& mesh) {
   const std::size_t count = mesh.triangles.size();
-  std::vector<std::uint8_t> flags(count, 0x7);
+  MeshSurface surface;
+  std::vector<std::uint8_t>& flags = surface.activeEdges;
+  flags.assign(count, 0x7);
+  std::vector<std::uint32_t>& patch = surface.patch;
+  patch.resize(count);
+  for (std::size_t t = 0; t < count; ++t) patch[t] = static_cast<std::uint32_t>(t);
   // Every edge once per triangle, keyed by its sorted vertex pair; equal keys are neighbours.
   std::vector<std::tuple<int, int, int, int>> edges;  // (low, high, triangle, edge)
   edges.reserve(3 * count);
@@ -46,6 +61,9 @@ std::vector<std::uint8_t> activeEdgeFlags(const TriangleMesh& mesh) {
       if (!active) {
         flags[static_cast<std::size_t>(t)] &= static_cast<std::uint8_t>(~(1u << k));
         flags[static_cast<std::size_t>(u)] &= static_cast<std::uint8_t>(~(1u << l));
+        const std::uint32_t rt = root(patch, static_cast<std::uint32_t>(t));
+        const std::uint32_t ru = root(patch, static_cast<std::uint32_t>(u));
+        patch[std::max(rt, ru)] = std::min(rt, ru);
       }
       (void)high;
       (void)low2;
@@ -53,7 +71,8 @@ std::vector<std::uint8_t> activeEdgeFlags(const TriangleMesh& mesh) {
     }
     e = end;
   }
-  return flags;
+  for (std::size_t t = 0; t < count; ++t) patch[t] = root(patch, static_cast<std::uint32_t>(t));
+  return surface;
 }
 
 }  // namespace coulomb::geometry

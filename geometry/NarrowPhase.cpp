@@ -3,6 +3,7 @@
 #include <coulomb/geometry/BoxContacts.hpp>
 #include <coulomb/geometry/FeatureContacts.hpp>
 #include <coulomb/geometry/HullContacts.hpp>
+#include <coulomb/geometry/MeshEdges.hpp>
 #include <coulomb/geometry/PrimitiveContacts.hpp>
 
 #include <algorithm>
@@ -168,13 +169,28 @@ void mergeTriangleResults(FeatureScratch& features, PairContact& out) {
   out.normal = sum.normalized();
 }
 
+// Whether a point of featureContact(triangle, other) (or (other, triangle) when the triangle is
+// B) is a vertex of the other shape on the triangle's face: the triangle is the clip reference
+// (bit 31 of the id says the reference is B; bit 30 marks a segment pair, with no reference) and
+// the vertex was not clipped (0x800: a cut against a side of the reference).
+bool slidesOnTheFace(std::uint32_t id, bool triangleIsA) {
+  if (id & (1u << 30) || id & 0x800u) return false;
+  return ((id >> 31) != 0) != triangleIsA;
+}
+
 // Appends one triangle pair's (or one triangle's) points to the merged list, ids mixed with
-// `key` so that they stay unique across triangles.
-void keepTriangleResult(const PairContact& one, std::uint32_t key, FeatureScratch& features) {
+// `key` so that they stay unique across triangles. With a `patch` (MeshSurface), a vertex of the
+// other shape on the triangle's face is keyed by the triangle's smooth patch instead: it is one
+// feature sliding over the surface, and keeps its id, and so its warm start and last solved row
+// (ContactCache), from triangle to triangle (a ball round a faceted drum, a box over a
+// triangulated floor; docs/tuning.md "Triangle meshes").
+void keepTriangleResult(const PairContact& one, std::uint32_t key, FeatureScratch& features,
+                        const std::uint32_t* patch = nullptr, bool triangleIsA = true) {
   double deepest = -std::numeric_limits<double>::infinity();
   const std::size_t begin = features.merged.size();
   for (ContactCandidate c : one.points) {
-    c.featureId = key * 2654435761u ^ c.featureId;
+    const bool onPatch = patch && slidesOnTheFace(c.featureId, triangleIsA);
+    c.featureId = (onPatch ? 0x80000000u | *patch : key) * 2654435761u ^ c.featureId;
     deepest = std::max(deepest, c.depth);
     features.merged.push_back(c);
   }
@@ -299,7 +315,7 @@ bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collid
   box.min.array() -= margin;
   box.max.array() += margin;
   scene.meshTrianglesNear(mesh.id, box, features.triangles);
-  const std::vector<std::uint8_t>* active = scene.meshActiveEdges(mesh.id);
+  const MeshSurface* surface = scene.meshSurface(mesh.id);
   const ConvexPart otherPart{.shape = other.shape.get(), .pose = meshIsA ? poseB : poseA};
   ConvexPart triangle;
   const bool fclReliable = !out.points.empty() && maxAbsDepth(out) >= kMprTolerance;
@@ -309,7 +325,7 @@ bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collid
     placeTriangle(shape, meshPose, t, triangle);
     const Eigen::Vector3d face = faceNormal(triangle);
     const std::uint8_t flags =
-        active && static_cast<std::size_t>(t) < active->size() ? (*active)[t] : 0x7;
+        surface ? surface->activeEdges[static_cast<std::size_t>(t)] : std::uint8_t{0x7};
     // Whether FCL reported this triangle (`out` holds FCL's points, their ids made from t).
     const auto tag = static_cast<std::uint32_t>((t + 1) << 4);
     const bool reported =
@@ -340,7 +356,8 @@ bool NarrowPhase::meshContact(const Collider& a, const Pose& poseA, const Collid
         std::any_of(one.points.begin(), one.points.end(),
                     [](const ContactCandidate& c) { return c.depth > 10.0 * kMprTolerance; }))
       continue;
-    keepTriangleResult(one, static_cast<std::uint32_t>(t + 1), features);
+    keepTriangleResult(one, static_cast<std::uint32_t>(t + 1), features,
+                       surface ? &surface->patch[static_cast<std::size_t>(t)] : nullptr, meshIsA);
   }
   if (features.results.empty()) return !out.points.empty() && fclReliable;  // FCL's points
   mergeTriangleResults(features, out);

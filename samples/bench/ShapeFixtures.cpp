@@ -2,6 +2,8 @@
 
 #include <coulomb/meshes/MakeConvexHull.hpp>
 
+#include <cmath>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +42,31 @@ geometry::TriangleMesh gridSlab(int cells, double halfWidth, double thickness) {
     const auto [i1, j1] = ring[(k + 1) % ring.size()];
     mesh.triangles.push_back({index(1, i0, j0), index(1, i1, j1), index(0, i1, j1)});
     mesh.triangles.push_back({index(1, i0, j0), index(0, i1, j1), index(0, i0, j0)});
+  }
+  return mesh;
+}
+
+geometry::TriangleMesh ringWall(int facets, double innerRadius, double outerRadius, double height) {
+  geometry::TriangleMesh mesh;
+  // Vertex 4k + (outer ? 2 : 0) + (top ? 1 : 0) at angle 2 pi k / facets.
+  for (int k = 0; k < facets; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / facets;
+    for (const double radius : {innerRadius, outerRadius})
+      for (const double z : {-0.5 * height, 0.5 * height})
+        mesh.vertices.emplace_back(radius * std::cos(angle), radius * std::sin(angle), z);
+  }
+  auto at = [facets](int k, int corner) { return 4 * (k % facets) + corner; };
+  for (int k = 0; k < facets; ++k) {
+    const int i0 = at(k, 0), i1 = at(k, 1), o0 = at(k, 2), o1 = at(k, 3);
+    const int j0 = at(k + 1, 0), j1 = at(k + 1, 1), p0 = at(k + 1, 2), p1 = at(k + 1, 3);
+    mesh.triangles.push_back({i0, i1, j1});  // inner wall, facing the axis
+    mesh.triangles.push_back({i0, j1, j0});
+    mesh.triangles.push_back({o0, p0, p1});  // outer wall, facing away
+    mesh.triangles.push_back({o0, p1, o1});
+    mesh.triangles.push_back({i1, o1, p1});  // top, facing +z
+    mesh.triangles.push_back({i1, p1, j1});
+    mesh.triangles.push_back({i0, j0, p0});  // bottom, facing -z
+    mesh.triangles.push_back({i0, p0, o0});
   }
   return mesh;
 }

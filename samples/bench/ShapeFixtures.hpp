@@ -13,6 +13,11 @@ namespace coulomb::samples {
 /// [-halfWidth, halfWidth]^2, `thickness` deep (its bottom a grid too, its sides strips).
 geometry::TriangleMesh gridSlab(int cells, double halfWidth, double thickness = 0.2);
 
+/// A closed ring (a drum's wall) about z: `facets` flat facets between `innerRadius` and
+/// `outerRadius`, z in [-height/2, height/2]. Its inner wall faces the axis, so a body inside the
+/// ring touches a concave polygon of facets (the vertices lie on the circle).
+geometry::TriangleMesh ringWall(int facets, double innerRadius, double outerRadius, double height);
+
 /// A box as a convex hull (makeConvexHull of its 8 corners), centred at the origin.
 geometry::ConvexHull boxHull(const Eigen::Vector3d& halfExtents);
 

@@ -220,11 +220,29 @@ TEST(MeshEdges, FlatAndConcaveEdgesAreInternalConvexAndOpenOnesActive) {
   for (int c = 0; c < 8; ++c) cube.vertices.emplace_back(c & 1, (c >> 1) & 1, (c >> 2) & 1);
   cube.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                     {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  const std::vector<std::uint8_t> flags = activeEdgeFlags(cube);
+  const MeshSurface surface = meshSurface(cube);
+  const std::vector<std::uint8_t>& flags = surface.activeEdges;
   int active = 0;
   for (const std::uint8_t f : flags) active += std::popcount(static_cast<unsigned>(f));
   EXPECT_EQ(active, 24);  // 12 convex edges, each seen from its two triangles
   for (const std::uint8_t f : flags) EXPECT_EQ(std::popcount(static_cast<unsigned>(f)), 2);
+  // Each face (two triangles across a flat diagonal) is one smooth patch, named by its first
+  // triangle; the convex edges separate them.
+  for (std::size_t t = 0; t < cube.triangles.size(); ++t)
+    EXPECT_EQ(surface.patch[t], static_cast<std::uint32_t>(t & ~std::size_t{1}))
+        << "triangle " << t;
+}
+
+TEST(MeshEdges, AConcaveRunOfFacetsIsOnePatch) {
+  // Two quads folded towards their front (concave seen from it) and a third folded back
+  // (convex): the first two are one patch, the third another.
+  TriangleMesh strip;
+  strip.vertices = {{0, 0, 0},   {0, 1, 0},   {1, 0, 0}, {1, 1, 0},
+                    {2, 0, 0.3}, {2, 1, 0.3}, {3, 0, 0}, {3, 1, 0}};
+  strip.triangles = {{0, 2, 3}, {0, 3, 1}, {2, 4, 5}, {2, 5, 3}, {4, 6, 7}, {4, 7, 5}};
+  const MeshSurface surface = meshSurface(strip);
+  EXPECT_EQ(surface.patch, (std::vector<std::uint32_t>{0, 0, 0, 0, 4, 4}));
+  EXPECT_EQ(surface.activeEdges[2] & 0x2, 0x2);  // the crease at x = 2 (edge 4-5 of triangle 2)
 }
 
 }  // namespace
