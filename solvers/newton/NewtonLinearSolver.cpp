@@ -144,12 +144,30 @@ bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vec
       const int o = offset[b], s = W.blockSize(b);
       const Eigen::Matrix3d& A = jac[b].A;
       const Eigen::Matrix3d& B = jac[b].B;
-      for (int a = 0; a < s; ++a) {
-        const int row = index[o + a];
-        if (row < 0) continue;
-        for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
-          const int j = W.blockColumn(k), oj = offset[j], sj = W.blockSize(j);
-          const double* v = W.blockValues(k);
+      for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
+        const int j = W.blockColumn(k), oj = offset[j], sj = W.blockSize(j);
+        const double* v = W.blockValues(k);
+        if (s == 3 && sj == 3) {  // two contacts: the 3 x 3 block A W_bj (+ sigma A + B), then
+          // scattered; each entry summed in the order of the general loop below
+          const int rows[3] = {index[o], index[o + 1], index[o + 2]};
+          const int cols[3] = {index[oj], index[oj + 1], index[oj + 2]};
+          for (int a = 0; a < 3; ++a) {
+            if (rows[a] < 0) continue;
+            for (int c = 0; c < 3; ++c) {
+              if (cols[c] < 0) continue;
+              double val = 0;
+              val += A(a, 0) * v[c];
+              val += A(a, 1) * v[3 + c];
+              val += A(a, 2) * v[6 + c];
+              if (j == b) val += sigma * A(a, c) + B(a, c);
+              J(rows[a], cols[c]) += val;
+            }
+          }
+          continue;
+        }
+        for (int a = 0; a < s; ++a) {
+          const int row = index[o + a];
+          if (row < 0) continue;
           for (int c = 0; c < sj; ++c) {
             const int col = index[oj + c];
             if (col < 0) continue;
