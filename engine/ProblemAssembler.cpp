@@ -148,8 +148,8 @@ AssembledProblem ProblemAssembler::assemble(const joints::RowSet& rows,
 
 void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::BodyState& state,
                                 const ArticulationStage* articulations,
-                                const InverseInertias* inverseInertias,
-                                AssembledProblem& out) const {
+                                const InverseInertias* inverseInertias, AssembledProblem& out,
+                                const ArrivalVelocities* arrival) const {
   const InverseInertias& inertias =
       inverseInertias != nullptr ? *inverseInertias : state.worldInverseInertias;
   AssemblyScratch& scratch = out.scratch;
@@ -261,8 +261,22 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
         }
     }
     out.problem.W = solvers::DelassusOperator::bodySpace(scratch.bodySpace);
+    // The bodies' velocities at the step's start, in the operator's body order (ContactProblem).
+    const int groups = static_cast<int>(groupStart.size()) - 1;
+    if (arrival != nullptr && arrival->linear.size() >= state.size() &&
+        arrival->angular.size() >= state.size()) {
+      out.problem.arrival.resize(6 * groups);
+      for (int g = 0; g < groups; ++g) {
+        const std::uint32_t body = touches[groupStart[g]].body;
+        out.problem.arrival.segment<3>(6 * g) = arrival->linear[body];
+        out.problem.arrival.segment<3>(6 * g + 3) = arrival->angular[body];
+      }
+    } else {
+      out.problem.arrival.resize(0);
+    }
     return;
   }
+  out.problem.arrival.resize(0);  // used with a body-space W only
 
   // W_kj = sum over the bodies b shared by blocks k and j (in increasing body index) of
   // J_k,b M_b^-1 J_j,b^T, plus the trees' part; built row block by row block, columns ascending.

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace coulomb::engine {
@@ -81,6 +82,12 @@ struct AssembledProblem {
 /// own (JointStage::stabilizedInverseInertias).
 using InverseInertias = std::vector<Eigen::Matrix3d>;
 
+/// The bodies' velocities at the step's start, before its forces (v_k, by body slot): with
+/// them the assembler also gives ContactProblem::arrival.
+struct ArrivalVelocities {
+  std::span<const Eigen::Vector3d> linear, angular;
+};
+
 class ProblemAssembler {
  public:
   explicit ProblemAssembler(AssemblySettings settings = {}) : settings_(settings) {}
@@ -93,10 +100,11 @@ class ProblemAssembler {
                                           const geometry::BodyState& state,
                                           const ArticulationStage* articulations = nullptr,
                                           const InverseInertias* inverseInertias = nullptr) const;
-  /// The same into `out`, reusing its storage (the World's per-island problems).
+  /// The same into `out`, reusing its storage (the World's per-island problems); with
+  /// `arrival`, also ContactProblem::arrival (for a body-space W).
   void assemble(const joints::RowSet& rows, const geometry::BodyState& state,
                 const ArticulationStage* articulations, const InverseInertias* inverseInertias,
-                AssembledProblem& out) const;
+                AssembledProblem& out, const ArrivalVelocities* arrival = nullptr) const;
   [[nodiscard]] const AssemblySettings& settings() const { return settings_; }
 
  private:

@@ -61,7 +61,9 @@ struct StepData {
   // Per body slot: its energy at the step's start (integrators/EnergyProjection.hpp), recorded
   // when the world has joints; empty otherwise.
   std::vector<double> startEnergies;
-  std::vector<geometry::Pose> startPoses;  // the same bodies' poses and velocities
+  std::vector<geometry::Pose> startPoses;  // the same bodies' poses
+  // Every body's velocities at the step's start (v_k), for ContactProblem::stepQ and the energy
+  // projection.
   std::vector<Eigen::Vector3d> startLinearVelocities, startAngularVelocities;
   std::vector<Eigen::Vector3d> powerVelocities;  // scratch of the energy projection
 

@@ -17,8 +17,6 @@ void World::recordStartEnergies() {
   for (std::size_t i = 0; i < state_.size(); ++i)
     step_.startEnergies[i] = integrators::bodyEnergy(state_, i, settings_.gravity);
   step_.startPoses = state_.poses;  // (assigned: the vectors keep their storage)
-  step_.startLinearVelocities = state_.linearVelocities;
-  step_.startAngularVelocities = state_.angularVelocities;
 }
 
 void World::projectJointIslandEnergies() {

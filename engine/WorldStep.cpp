@@ -52,6 +52,8 @@ const StepReport& World::step(double h) {
 
   quarantine_.begin(state_, articulations_);  // last good state
   recordStartEnergies();                      // E~ at the start, for the energy projection
+  step_.startLinearVelocities = state_.linearVelocities;  // v_k (the vectors keep their storage)
+  step_.startAngularVelocities = state_.angularVelocities;
   forBodyRanges(executor_, state_.size(), [&](std::size_t first, std::size_t last) {  // v*
     integrators::predictFreeVelocities(state_, settings_.gravity, h, first, last);
   });
@@ -194,8 +196,10 @@ void World::emitRows(IslandWork& island) {
 }
 
 void World::solveIsland(IslandWork& island) {
+  const ArrivalVelocities arrival{step_.startLinearVelocities, step_.startAngularVelocities};
   ProblemAssembler(settings_.assembly)
-      .assemble(island.rows, state_, &articulations_, step_.inverseInertias(), island.assembled);
+      .assemble(island.rows, state_, &articulations_, step_.inverseInertias(), island.assembled,
+                &arrival);
   const solvers::ContactProblem& problem = island.assembled.problem;
   const solvers::SolverChoice& choice = choiceOf(island);
   island.automaticPlan = choice.isAutomatic();
@@ -255,9 +259,13 @@ void World::applyImpulses(IslandWork& island) {
   const std::vector<RowBlockSlot>& slots = island.assembled.slots;
   engine::applyImpulses(island.rows, slots, r, state_, step_.inverseInertias());   // v+
   articulations_.applyImpulses(island.assembled.scratch.trees, slots, r, state_);  // qd+
+  // Kept for the next step's warm start: r, or the solve's better choice (SolveOutcome).
+  const solvers::SolveOutcome& best = island.outcome.best;
+  const Eigen::VectorXd& kept =
+      best.hasNextWarmStart && best.nextWarmStart.size() == r.size() ? best.nextWarmStart : r;
   const RowContext context = rowContext();
   for (const RowOwner owner : {kJointRows, kContactRows, kTreeRows})
-    rowSource(owner).storeImpulses(island.rows, island.blocks[owner], slots, r, context);
+    rowSource(owner).storeImpulses(island.rows, island.blocks[owner], slots, kept, context);
 }
 
 void World::correctPenetrations() {

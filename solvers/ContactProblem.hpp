@@ -61,6 +61,12 @@ struct ContactProblem {
   Eigen::VectorXd q;                         // size()
   std::vector<ConstraintBlock> blocks;       // in the order of the unknowns
   std::optional<Eigen::VectorXd> warmStart;  // size(): initial r (e.g. last step's impulses)
+  // Empty, or 6 per body of a body-space W (its body order; linear, angular): the bodies'
+  // velocities at the step's start, before the step's forces (v_k). J v_k are the rows'
+  // velocities the bodies arrived with; on a resting body, the error the last solve left within
+  // its tolerance, which an exact answer removes once and which a warm start must not repeat
+  // (SolveOutcome::nextWarmStart).
+  Eigen::VectorXd arrival;
 
   // A pure contact problem (fc3d): n contacts with coefficients mu.
   static ContactProblem contacts(DelassusOperator W, Eigen::VectorXd q,

@@ -45,6 +45,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   const auto t0 = SolveContext::Clock::now();
   SolverReport& report = out.report;
   report.reset();
+  out.hasNextWarmStart = false;
   report.solver = name();
   auto finish = [&]() {
     work.prepared.bodySpace.reset();  // the problem's factors: theirs to reuse once it is done
@@ -61,6 +62,8 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   const int n = problem.size();
   out.impulses.setZero(n);
   out.velocities = problem.q;
+  out.nextWarmStart.resize(n);  // its storage, sized with the others (a steady step allocates
+                                // nothing when the next warm start is first kept)
   if (auto bad = problem.validate()) {
     report.status = SolverStatus::InvalidProblem;
     report.note(*bad);
@@ -92,6 +95,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // again.
   Eigen::VectorXd &u = work.u, &dv = work.dv, &r = work.r;
   r.setZero(n);
+  work.stepQ.resize(n);  // sized with the others: its first use in a steady step allocates nothing
   double e = prepared.residual(r, u, dv);
   // Projected onto the constraint set, kept when its residual is at most `e` (or below it).
   auto tryStart = [&](const Eigen::VectorXd& candidate, bool tieKeeps) {
@@ -130,9 +134,34 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // iterations assembles W and factors all 3 x contacts unknowns, the start only 6 x bodies ones,
   // so the start is the cheaper first try (a restart after a Newton iteration would come too late).
   const bool upFront = !warm || !worksInBodySpace();
+  // A warm-started problem's sticking start is also computed for stepQ = q - J v_k: when it is
+  // the answer, that one is the next step's warm start (SolveOutcome::nextWarmStart). Only where
+  // the rows' velocities at the step's start, J v_k, are what a solve within the tolerance leaves
+  // behind (at most the tolerance of the common residual): larger ones are motion the bodies
+  // arrived with (an impact, a throw), whose impulse is part of the answer's physics. Formed
+  // when a start is computed (O(rows)).
+  bool stepQKnown = false;
+  const Eigen::VectorXd* stepQ = nullptr;
+  auto stepQForStart = [&]() -> const Eigen::VectorXd* {
+    if (stepQKnown) return stepQ;
+    stepQKnown = true;
+    if (!warm || factors == nullptr || problem.arrival.size() != 6 * factors->bodyCount())
+      return stepQ;
+    Eigen::VectorXd& arrivedQ = work.stepQ;
+    arrivedQ.setZero(n);
+    for (int b = 0; b < factors->blockCount(); ++b)
+      factors->addBlockVelocity(b, problem.arrival, arrivedQ.data() + factors->blockOffset(b));
+    if (plainNorm(arrivedQ) > options.tolerance * (1.0 + prepared.qNorm)) return stepQ;
+    arrivedQ = problem.q - arrivedQ;
+    return stepQ = &arrivedQ;
+  };
+  bool answerIsStickingStart = false;  // r is stick.start(), projected
   if (sticking && upFront && e > options.tolerance &&
-      stick.compute(*factors, problem.q, problem.blocks, warm) && tryStart(stick.start(), false))
+      stick.compute(*factors, problem.q, problem.blocks, warm, stepQForStart()) &&
+      tryStart(stick.start(), false)) {
     report.note(kStickingNote);
+    answerIsStickingStart = true;
+  }
   const bool restart =
       sticking && warm && worksInBodySpace() && options.maxIterations > kStickingRestartSweeps;
   Eigen::VectorXd& r0 = work.r0;
@@ -163,8 +192,10 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     report.nativeResidual = e;
     report.nativeResidualName = "common residual of the start";
   } else if (!restart) {
+    answerIsStickingStart = false;
     runFrom(options);
   } else {
+    answerIsStickingStart = false;
     SolverOptions firstOptions = options;
     firstOptions.maxIterations = kStickingRestartSweeps;
     runFrom(firstOptions);
@@ -176,7 +207,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
       // The iterate takes the warm start's place in choosing the stopped contacts: those it
       // loads. It is in the problem's variables: body space is kept only for problems that
       // PreparedProblem does not rescale (no anisotropic cone).
-      if (stick.compute(*factors, problem.q, problem.blocks, &r) &&
+      if (stick.compute(*factors, problem.q, problem.blocks, &r, stepQForStart()) &&
           tryStart(stick.start(), false)) {
         report.note(kStickingNote);
         SolverOptions restOptions = options;
@@ -184,6 +215,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
         if (e <= options.tolerance) {
           report.status = SolverStatus::Converged;
           report.nativeResidual = e;
+          answerIsStickingStart = true;
         } else {
           runFrom(restOptions);
           report.iterations += used;
@@ -202,6 +234,12 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     }
   }
   prepared.toOriginal(r, out.impulses);
+  if (answerIsStickingStart && stepQ && stick.hasStepStart()) {
+    // Projected like the start itself (body space is kept only for unscaled problems).
+    out.nextWarmStart = stick.stepStart();
+    prepared.project(out.nextWarmStart);
+    out.hasNextWarmStart = true;
+  }
   const ResidualValue res = commonResidual(problem, out.impulses, out.velocities);
   report.residual = res.relative;
   report.absoluteResidual = res.absolute;
@@ -217,6 +255,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
       report.note(msg.str());
       out.impulses.swap(work.rs);  // both keep their storage for the next solve
       out.velocities.swap(work.us);
+      out.hasNextWarmStart = false;
       report.residual = startResidual.relative;
       report.absoluteResidual = startResidual.absolute;
     }
@@ -225,6 +264,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     report.status = SolverStatus::NumericalFailure;
     out.impulses.setZero();
     out.velocities = problem.q;
+    out.hasNextWarmStart = false;
     report.residual = commonResidual(problem, out.impulses).relative;
   }
   if (report.status == SolverStatus::Converged && report.residual > options.tolerance) {

@@ -25,6 +25,12 @@ struct SolveOutcome {
   Eigen::VectorXd impulses;    // r, problem.size() entries, always finite
   Eigen::VectorXd velocities;  // u = W r + q
   SolverReport report;
+  // With hasNextWarmStart, the warm start to keep for the next step instead of r: when r is the
+  // all-sticking start of a warm-started problem with ContactProblem::arrival, the same start for
+  // q - J v_k (the impulses that hold the step's load, without the one-off removal of the velocity
+  // error the last step left; docs/solvers.md "Sticking start"). The vector keeps its storage.
+  Eigen::VectorXd nextWarmStart;
+  bool hasNextWarmStart = false;
 };
 
 class ContactSolver {
@@ -75,6 +81,7 @@ class ContactSolver {
     Eigen::VectorXd u, dv, r, s, dvs, r0;
     Eigen::VectorXd rs, us;  // the start in original variables and its u (never worse than it)
     StickingStart sticking;  // SolverOptions::stickingStart, unless a workspace is lent
+    Eigen::VectorXd stepQ;   // q - J v_k (ContactProblem::arrival)
   };
   void run(const ContactProblem& problem, const SolverOptions& options,
            const Eigen::VectorXd* start, SolveOutcome& out, Workspace& work) const;

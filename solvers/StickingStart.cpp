@@ -81,10 +81,14 @@ void StickingStart::accumulate(const BodySpaceDelassus& W, bool inverseMassWeigh
 
 bool StickingStart::compute(const BodySpaceDelassus& W, const Eigen::VectorXd& q,
                             const std::vector<ConstraintBlock>& blocks,
-                            const Eigen::VectorXd* warmStart) {
+                            const Eigen::VectorXd* warmStart, const Eigen::VectorXd* stepQ) {
   Eigen::VectorXd& r = start_;
   const int blockCount = W.blockCount();
   r.setZero(W.size());
+  if (stepQ && stepQ->size() != q.size()) stepQ = nullptr;
+  hasStepStart_ = false;
+  stepStart_.setZero(W.size());  // sized whether or not it is computed: no allocation on its
+                                 // first use in a steady step
   if (W.bodyCount() == 0 || static_cast<int>(blocks.size()) != blockCount || q.size() != W.size())
     return false;
   if (warmStart && warmStart->size() != W.size()) warmStart = nullptr;
@@ -118,22 +122,36 @@ bool StickingStart::compute(const BodySpaceDelassus& W, const Eigen::VectorXd& q
           if (const int body = W.blockBody(b, side); body >= 0) visit(row, side, body);
     }
   };
-  rhs_.setZero(6 * bodies_);
-  forSelectedSides([&](int row, int side, int body) {
-    const double* g = W.inverseMassColumn(row, side);
-    for (int c = 0; c < 6; ++c) rhs_[6 * body + c] -= g[c] * q[row];
-  });
+  auto loadRhs = [&](const Eigen::VectorXd& velocities, Eigen::VectorXd& rhs) {
+    rhs.setZero(6 * bodies_);
+    forSelectedSides([&](int row, int side, int body) {
+      const double* g = W.inverseMassColumn(row, side);
+      for (int c = 0; c < 6; ++c) rhs[6 * body + c] -= g[c] * velocities[row];
+    });
+  };
+  loadRhs(q, rhs_);
+  stepRhs_.resize(rhs_.size());
+  stepF_.resize(rhs_.size());
+  if (stepQ) loadRhs(*stepQ, stepRhs_);
   accumulate(W, true);
   if (!ldlt_.factorize(diagonal_, coupling_)) return false;
   ldlt_.solve(rhs_, f_);
+  if (stepQ) ldlt_.solve(stepRhs_, stepF_);
   // r = J P^-1 f: the least-norm row impulses with J^T r = f.
   accumulate(W, false);
   if (!ldlt_.factorize(diagonal_, coupling_)) return false;
-  ldlt_.solve(f_, x_);
-  forSelectedSides([&](int row, int side, int body) {
-    const double* j = W.jacobianRow(row, side);
-    for (int c = 0; c < 6; ++c) r[row] += j[c] * x_[6 * body + c];
-  });
+  auto rowImpulses = [&](const Eigen::VectorXd& f, Eigen::VectorXd& out) {
+    ldlt_.solve(f, x_);
+    forSelectedSides([&](int row, int side, int body) {
+      const double* j = W.jacobianRow(row, side);
+      for (int c = 0; c < 6; ++c) out[row] += j[c] * x_[6 * body + c];
+    });
+  };
+  rowImpulses(f_, r);
+  if (stepQ) {
+    rowImpulses(stepF_, stepStart_);
+    hasStepStart_ = stepStart_.allFinite();
+  }
   return r.allFinite();
 }
 

@@ -47,10 +47,16 @@ class StickingStart {
   /// restarts from it; a resting contact's q_N flickers around 0 by round-off and drift). The
   /// others get 0; r is not projected onto the cones. False when no row is selected or a
   /// factorization fails (r is then unusable).
+  /// With `stepQ` (or null), the same rows' start for it as well, from the same factorizations:
+  /// stepStart() (a solve's q - J v_k, ContactProblem::arrival).
   bool compute(const BodySpaceDelassus& W, const Eigen::VectorXd& q,
-               const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd* warmStart);
+               const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd* warmStart,
+               const Eigen::VectorXd* stepQ = nullptr);
   /// The last computed start (kept here, so that a solve that takes it allocates nothing).
   [[nodiscard]] const Eigen::VectorXd& start() const { return start_; }
+  /// The last start for stepQ, when hasStepStart() (compute() had a stepQ and succeeded).
+  [[nodiscard]] const Eigen::VectorXd& stepStart() const { return stepStart_; }
+  [[nodiscard]] bool hasStepStart() const { return hasStepStart_; }
 
  private:
   // Whether block b is stopped, and its body pair's index in pairs_ (-1: one side or one body).
@@ -69,7 +75,9 @@ class StickingStart {
   std::vector<std::pair<int, int>> pattern_;  // pairs_ as (higher, lower): P and Q's pattern
   std::vector<BlockLdlt::Block> diagonal_, coupling_;  // per body, per pair
   BlockLdlt ldlt_;
-  Eigen::VectorXd rhs_, f_, x_, start_;
+  Eigen::VectorXd rhs_, f_, x_, start_, stepStart_;
+  Eigen::VectorXd stepRhs_, stepF_;  // the same for stepQ
+  bool hasStepStart_ = false;
   int bodies_ = 0;
 };
 
