@@ -234,6 +234,15 @@ TEST(StickingStart, TheStartForStepQIsTheStartOfThatQ) {
 
 namespace {
 
+// The rows' velocities J v_k of the bodies' arrival velocities (ContactProblem::arrival).
+Eigen::VectorXd arrivalRowVelocities(const ContactProblem& p) {
+  const BodySpaceDelassus& factors = *p.W.bodySpaceOperator();
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(p.size());
+  for (int b = 0; b < factors.blockCount(); ++b)
+    factors.addBlockVelocity(b, p.arrival, d.data() + factors.blockOffset(b));
+  return d;
+}
+
 // The resting tower of `boxes` boxes whose bodies arrive with vertical velocity errors
 // +-epsilon (alternating by box; ContactProblem::arrival): q = q0 + J v_k. Warm-started with the
 // exact answer of the step before, which arrived with the opposite errors (q0 - J v_k): the warm
@@ -241,15 +250,12 @@ namespace {
 // errors within the tolerance.
 ContactProblem towerArrivingWithErrors(int boxes, double epsilon) {
   ContactProblem p = tower(boxes, 0.5);
-  const BodySpaceDelassus& factors = *p.W.bodySpaceOperator();
   p.arrival = Eigen::VectorXd::Zero(6 * boxes);
   for (int k = 0; k < boxes; ++k) p.arrival[6 * k + 2] = (k % 2 == 0 ? 1.0 : -1.0) * epsilon;
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(p.size());
-  for (int b = 0; b < factors.blockCount(); ++b)
-    factors.addBlockVelocity(b, p.arrival, d.data() + factors.blockOffset(b));
+  const Eigen::VectorXd d = arrivalRowVelocities(p);
   StickingStart before;
   const Eigen::VectorXd previousQ = p.q - d;
-  EXPECT_TRUE(before.compute(factors, previousQ, p.blocks, nullptr));
+  EXPECT_TRUE(before.compute(*p.W.bodySpaceOperator(), previousQ, p.blocks, nullptr));
   p.warmStart = before.start();
   p.q += d;
   return p;
@@ -257,12 +263,7 @@ ContactProblem towerArrivingWithErrors(int boxes, double epsilon) {
 
 // q without the arrival: the next step's, for bodies that the answer stopped.
 Eigen::VectorXd steadyQ(const ContactProblem& p) {
-  const BodySpaceDelassus& factors = *p.W.bodySpaceOperator();
-  Eigen::VectorXd q = p.q;
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(p.size());
-  for (int b = 0; b < factors.blockCount(); ++b)
-    factors.addBlockVelocity(b, p.arrival, d.data() + factors.blockOffset(b));
-  return q - d;
+  return p.q - arrivalRowVelocities(p);
 }
 
 double residualFor(const ContactProblem& p, const Eigen::VectorXd& q, const Eigen::VectorXd& r) {
