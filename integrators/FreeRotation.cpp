@@ -1,21 +1,45 @@
 #include <coulomb/geometry/Quaternion.hpp>
 #include <coulomb/integrators/FreeRotation.hpp>
 
+#include <cmath>
+
 namespace coulomb::integrators {
 
 Eigen::Quaterniond rotateTorqueFree(const Eigen::Quaterniond& orientation,
                                     const Eigen::Quaterniond& principalFrame,
                                     const Eigen::Vector3d& principalMoments,
                                     const Eigen::Vector3d& angularMomentum, double h) {
+  const Eigen::Quaterniond toPrincipal = orientation * principalFrame;
+  return (rotatePrincipalFrame(toPrincipal, toPrincipal.conjugate() * angularMomentum,
+                               principalMoments, h) *
+          principalFrame.conjugate())
+      .normalized();
+}
+
+Eigen::Quaterniond rotatePrincipalFrame(const Eigen::Quaterniond& toPrincipal,
+                                        const Eigen::Vector3d& bodyMomentum,
+                                        const Eigen::Vector3d& principalMoments, double h) {
   // Q: principal axes -> world. The body momentum pi = Q^T L; the flow of T_k = pi_k^2/(2 I_k)
   // is Q <- Q R_k(t pi_k / I_k), pi <- R_k^T pi (DLM 1997, eqs. 3.5-3.7), so L = Q pi is unchanged.
-  Eigen::Quaterniond q = orientation * principalFrame;
-  Eigen::Vector3d pi = q.conjugate() * angularMomentum;
+  // R_k is a rotation about a coordinate axis: Q R_k and R_k^T pi are written out (half the
+  // arithmetic of general quaternion products; one sine and cosine per sub-rotation).
+  Eigen::Vector4d q(toPrincipal.w(), toPrincipal.x(), toPrincipal.y(), toPrincipal.z());
+  Eigen::Vector3d pi = bodyMomentum;
   const auto subRotation = [&](int axis, double step) {
-    const Eigen::Quaterniond r =
-        geometry::axisRotation(axis, step * pi[axis] / principalMoments[axis]);
-    q = q * r;
-    pi = r.conjugate() * pi;
+    const double half = 0.5 * step * pi[axis] / principalMoments[axis];
+    const double c = std::cos(half), s = std::sin(half);
+    // Q R_k with R_k = (c, s e_k): w = c w - s v_k; v = c v + s w e_k + s (v x e_k).
+    const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    const double w = q[0], vk = q[1 + axis], vi = q[1 + i], vj = q[1 + j];
+    q[0] = c * w - s * vk;
+    q[1 + axis] = c * vk + s * w;
+    q[1 + i] = c * vi + s * vj;  // (v x e_k)_i = v_j, (v x e_k)_j = -v_i
+    q[1 + j] = c * vj - s * vi;
+    // R_k^T pi: the plane (i, j) turned by -angle, cos angle = c^2 - s^2, sin angle = 2 s c.
+    const double cosAngle = c * c - s * s, sinAngle = 2.0 * s * c;
+    const double pii = pi[i], pij = pi[j];
+    pi[i] = cosAngle * pii + sinAngle * pij;
+    pi[j] = cosAngle * pij - sinAngle * pii;
   };
   // The splitting's error grows with the angle an axis turns per step. At a few radians per step
   // (a thin plank at 200 rad/s, dt = 1/60: 3.3 rad) it moves body momentum onto the axis of the
@@ -38,7 +62,18 @@ Eigen::Quaterniond rotateTorqueFree(const Eigen::Quaterniond& orientation,
     subRotation(0, 0.5 * dt);
     remaining = dt == remaining ? 0.0 : remaining - dt;
   }
-  return (q * principalFrame.conjugate()).normalized();
+  return {q[0], q[1], q[2], q[3]};
+}
+
+Eigen::Quaterniond torqueFreeOrientation(const geometry::BodyState& state, std::size_t i, double h,
+                                         Eigen::Vector3d* momentum) {
+  const Eigen::Quaterniond toPrincipal = state.poses[i].rotation * state.principalFrames[i];
+  const Eigen::Vector3d bodyMomentum =
+      state.principalMoments[i].cwiseProduct(toPrincipal.conjugate() * state.angularVelocities[i]);
+  if (momentum != nullptr) *momentum = toPrincipal * bodyMomentum;
+  return (rotatePrincipalFrame(toPrincipal, bodyMomentum, state.principalMoments[i], h) *
+          state.principalFrames[i].conjugate())
+      .normalized();
 }
 
 }  // namespace coulomb::integrators

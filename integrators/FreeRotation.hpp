@@ -8,7 +8,11 @@
 // exactly (each sub-rotation moves orientation and body momentum together) and |pi| is preserved.
 // A step turns no axis by more than 1 rad: a faster spinner is sub-stepped, since at radians
 // per step the splitting error pumps energy into the axis of the smallest moment.
+#include <coulomb/geometry/BodyState.hpp>
+
 #include <Eigen/Geometry>
+
+#include <cstddef>
 
 namespace coulomb::integrators {
 
@@ -19,5 +23,17 @@ Eigen::Quaterniond rotateTorqueFree(const Eigen::Quaterniond& orientation,
                                     const Eigen::Quaterniond& principalFrame,
                                     const Eigen::Vector3d& principalMoments,
                                     const Eigen::Vector3d& angularMomentum, double h);
+
+/// The flow itself on the principal frame Q (principal axes -> world) with the body momentum
+/// pi = Q^T L: the new Q, not normalized.
+Eigen::Quaterniond rotatePrincipalFrame(const Eigen::Quaterniond& toPrincipal,
+                                        const Eigen::Vector3d& bodyMomentum,
+                                        const Eigen::Vector3d& principalMoments, double h);
+
+/// Dynamic body i's orientation after a torque-free step h with its current angular velocity:
+/// what integratePositions produces and the predicted-state correction predicts (one function,
+/// so the two agree to the bit). `momentum`, if given, receives its world angular momentum.
+Eigen::Quaterniond torqueFreeOrientation(const geometry::BodyState& state, std::size_t i, double h,
+                                         Eigen::Vector3d* momentum = nullptr);
 
 }  // namespace coulomb::integrators

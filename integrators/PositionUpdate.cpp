@@ -20,9 +20,8 @@ void integratePositions(geometry::BodyState& state, double h, std::size_t first,
           geometry::integrateWorldRotation(pose.rotation, state.angularVelocities[i], h);
       continue;
     }
-    const Eigen::Vector3d momentum = state.angularMomentum(i);
-    pose.rotation = rotateTorqueFree(pose.rotation, state.principalFrames[i],
-                                     state.principalMoments[i], momentum, h);
+    Eigen::Vector3d momentum;
+    pose.rotation = torqueFreeOrientation(state, i, h, &momentum);
     state.refreshWorldInertia(i);
     state.angularVelocities[i] = state.worldInverseInertias[i] * momentum;
   }

@@ -184,13 +184,14 @@ const joints::RowJacobian& side(const std::vector<joints::ConstraintEval>& at,
 }
 
 // w.b = blocks of J_rows M^-1 J_impulses^T (the rows' Jacobians taken from `rowsAt`, the impulses'
-// from `impulsesAt`), plus `compliance` on every diagonal entry.
+// from `impulsesAt`), plus `compliance` on every diagonal entry. Without `impulsesAt`, the
+// M^-1 J^T of the last call are used (the Newton passes share the start's).
 void assemble(const geometry::BodyState& state, const std::vector<joints::ConstraintEval>& rowsAt,
-              const std::vector<joints::ConstraintEval>& impulsesAt, double compliance,
+              const std::vector<joints::ConstraintEval>* impulsesAt, double compliance,
               Workspace& w) {
-  for (std::size_t t = 0; t < w.touches.size(); ++t) {
+  for (std::size_t t = 0; impulsesAt != nullptr && t < w.touches.size(); ++t) {
     const auto& touch = w.touches[t];
-    const joints::RowJacobian& J = side(impulsesAt, touch);
+    const joints::RowJacobian& J = side(*impulsesAt, touch);
     Matrix6k& out = w.minvJt[t];
     out.resize(6, J.rows());
     out.topRows<3>() = state.inverseMasses[touch.body] * J.leftCols<3>().transpose();
@@ -280,8 +281,7 @@ geometry::Pose predictPose(const geometry::BodyState& state, std::size_t i, doub
     pose.rotation = geometry::integrateWorldRotation(pose.rotation, state.angularVelocities[i], h);
     return pose;
   }
-  pose.rotation = rotateTorqueFree(pose.rotation, state.principalFrames[i],
-                                   state.principalMoments[i], state.angularMomentum(i), h);
+  pose.rotation = torqueFreeOrientation(state, i, h);
   return pose;
 }
 
@@ -314,7 +314,7 @@ void correctPredictedState(geometry::BodyState& state,
     const auto pose = [&](const geometry::BodyId& id) {
       return id.valid() ? state.poses[id.index] : geometry::Pose::identity();
     };
-    w.start[j] = joints::evaluateJoint(def, pose(def.bodyA), pose(def.bodyB));
+    joints::evaluateJoint(def, pose(def.bodyA), pose(def.bodyB), w.start[j]);
     w.offset[j + 1] = w.offset[j] + w.start[j].rows();
     result.impulses[j] = joints::RowVector::Zero(w.start[j].rows());
   }
@@ -332,7 +332,7 @@ void correctPredictedState(geometry::BodyState& state,
   }
 
   // A = J M^-1 J^T at the start: its largest diagonal scales the compliance of every row.
-  assemble(state, w.start, w.start, 0.0, w);
+  assemble(state, w.start, &w.start, 0.0, w);
   double maxDiagonal = 0.0;
   for (int j = 0; j < jointCount; ++j) {
     const int q = w.diagonalPair[j], k = w.start[j].rows();
@@ -363,7 +363,7 @@ void correctPredictedState(geometry::BodyState& state,
     double largest = 0.0;
     for (int j = 0; j < jointCount; ++j) {
       const joints::JointDef& def = *joints[j];
-      w.predicted[j] = joints::evaluateJoint(def, poseAt(def.bodyA), poseAt(def.bodyB));
+      joints::evaluateJoint(def, poseAt(def.bodyA), poseAt(def.bodyB), w.predicted[j]);
       drift.segment(w.offset[j], w.predicted[j].rows()) = w.predicted[j].error;
       largest = std::max(largest, w.predicted[j].error.cwiseAbs().maxCoeff());
     }
@@ -372,8 +372,17 @@ void correctPredictedState(geometry::BodyState& state,
   const auto applyImpulse = [&](const Eigen::VectorXd& p,
                                 const std::vector<joints::ConstraintEval>& along) {
     for (const Workspace::Touch& t : w.touches) {
-      const auto impulse = p.segment(w.offset[t.joint], w.start[t.joint].rows());
       const joints::RowJacobian& J = side(along, t);
+      if (J.rows() == 3) {  // ball joints: fixed sizes
+        const Eigen::Vector3d impulse = p.segment<3>(w.offset[t.joint]);
+        const Eigen::Map<const Rows3> rows(J.data());
+        state.linearVelocities[t.body] +=
+            state.inverseMasses[t.body] * (rows.leftCols<3>().transpose() * impulse);
+        state.angularVelocities[t.body] +=
+            state.worldInverseInertias[t.body] * (rows.rightCols<3>().transpose() * impulse);
+        continue;
+      }
+      const auto impulse = p.segment(w.offset[t.joint], w.start[t.joint].rows());
       state.linearVelocities[t.body] +=
           state.inverseMasses[t.body] * (J.leftCols<3>().transpose() * impulse);
       state.angularVelocities[t.body] +=
@@ -405,7 +414,7 @@ void correctPredictedState(geometry::BodyState& state,
     // ~h|omega| per pass and fails on a whipping chain's tip). B turns singular where a chain
     // passes a straight configuration, so the step is Levenberg-Marquardt damped:
     // (B^T B + mu I) p = B^T (-C/h), mu shrunk after a success and grown until the error drops.
-    assemble(state, w.predicted, w.start, compliance, w);
+    assemble(state, w.predicted, nullptr, compliance, w);  // M^-1 J^T of the start, as above
     w.target = -drift / h;
     normalEquations(w.target, w);
     double scaleOfNormal = 0.0;
@@ -450,7 +459,7 @@ void correctPredictedState(geometry::BodyState& state,
   for (int pass = result.iterations; pass < settings.iterations && largest > settings.tolerance;
        ++pass) {
     w.along = w.predicted;
-    assemble(state, w.along, w.along, compliance, w);
+    assemble(state, w.along, &w.along, compliance, w);
     w.entries.resize(w.symmetricSource.size());
     for (std::size_t e = 0; e < w.symmetricSource.size(); ++e)
       w.entries[e] = w.b[w.symmetricSource[e]];

@@ -27,6 +27,24 @@ ConstraintEval evaluateJoint(const JointDef& def, const geometry::Pose& poseA,
   return ConstraintEval(0);
 }
 
+void evaluateJoint(const JointDef& def, const geometry::Pose& poseA, const geometry::Pose& poseB,
+                   ConstraintEval& out) {
+  if (def.type != JointType::Ball) {
+    out = evaluateJoint(def, poseA, poseB);
+    return;
+  }
+  // As toWorld, the anchors and arms only (setPointRows writes every entry of the 3 rows).
+  WorldFrame a, b;
+  a.arm = poseA.rotation * def.frameA.anchor;
+  a.anchor = poseA.position + a.arm;
+  b.arm = poseB.rotation * def.frameB.anchor;
+  b.anchor = poseB.position + b.arm;
+  out.error.resize(3);
+  out.jacobianA.resize(3, 6);
+  out.jacobianB.resize(3, 6);
+  setPointRows(out, 0, a, b);
+}
+
 std::optional<JointCoordinate> jointCoordinate(const JointDef& def, const geometry::Pose& poseA,
                                                const geometry::Pose& poseB) {
   if (def.type == JointType::Hinge) return hingeAngle(def.frameA, def.frameB, poseA, poseB);

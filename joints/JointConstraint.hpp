@@ -13,6 +13,11 @@ namespace coulomb::joints {
 /// identity for the world).
 ConstraintEval evaluateJoint(const JointDef& def, const geometry::Pose& poseA,
                              const geometry::Pose& poseB);
+/// The same into `out`, reusing its storage: the iterations that re-evaluate every joint per
+/// pass (the predicted-state correction) neither zero nor copy k x 6 matrices, and a ball joint
+/// computes only its anchors.
+void evaluateJoint(const JointDef& def, const geometry::Pose& poseA, const geometry::Pose& poseB,
+                   ConstraintEval& out);
 
 /// Hinge angle or slider displacement; nullopt for types without a coordinate.
 std::optional<JointCoordinate> jointCoordinate(const JointDef& def, const geometry::Pose& poseA,

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <random>
 
 using namespace coulomb;
@@ -63,6 +64,27 @@ TEST_P(JointJacobian, MatchesFiniteDifferencesOfC) {
         EXPECT_LT((numeric - analytic).norm(), 1e-7)
             << joints::jointTypeName(def.type) << " side " << side << " column " << k;
       }
+  }
+}
+
+TEST_P(JointJacobian, InPlaceEvaluationEqualsTheReturnedOne) {
+  // The correction's per-pass form (storage reused, a ball joint's anchors only) gives the same
+  // bits as evaluateJoint, whatever the row count the storage held before.
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 10; ++trial) {
+    joints::JointDef def;
+    def.type = GetParam();
+    def.frameA = randomFrame(rng);
+    def.frameB = randomFrame(rng);
+    const geometry::Pose a = randomPose(rng), b = randomPose(rng);
+    const joints::ConstraintEval expected = joints::evaluateJoint(def, a, b);
+    joints::ConstraintEval reused(trial % 2 == 0 ? 6 : 1);
+    reused.jacobianA.setConstant(std::nan(""));
+    reused.jacobianB.setConstant(std::nan(""));
+    joints::evaluateJoint(def, a, b, reused);
+    EXPECT_EQ(reused.error, expected.error) << joints::jointTypeName(def.type);
+    EXPECT_EQ(reused.jacobianA, expected.jacobianA) << joints::jointTypeName(def.type);
+    EXPECT_EQ(reused.jacobianB, expected.jacobianB) << joints::jointTypeName(def.type);
   }
 }
 
