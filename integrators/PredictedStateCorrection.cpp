@@ -344,7 +344,6 @@ void correctPredictedState(geometry::BodyState& state,
 
   Eigen::VectorXd& drift = w.drift;
   drift.resize(n);
-  w.predicted.resize(jointCount);
   // Predicted error of every joint at t+h with the current velocities; returns the largest |C|.
   const auto predictErrors = [&] {
     // Each touched body once (a chain link is on two joints; the torque-free rotation is the
@@ -361,6 +360,7 @@ void correctPredictedState(geometry::BodyState& state,
       return predictedPoseOf(state, id, h);
     };
     double largest = 0.0;
+    w.predicted.resize(jointCount);  // no allocation once both buffers (see the Newton pass) grew
     for (int j = 0; j < jointCount; ++j) {
       const joints::JointDef& def = *joints[j];
       joints::evaluateJoint(def, poseAt(def.bodyA), poseAt(def.bodyB), w.predicted[j]);
@@ -407,42 +407,37 @@ void correctPredictedState(geometry::BodyState& state,
   Eigen::VectorXd& total = w.total;
   total.setZero(n);
   Eigen::VectorXd& p = w.p;
-  double damping = 1e-12;  // Levenberg-Marquardt mu, relative to max diag(B^T B)
+  constexpr double kRegularization = 1e-12;  // mu relative to max diag(B^T B): B may be singular
   for (int pass = 0; pass < settings.iterations && largest > settings.tolerance; ++pass) {
     // Newton step on p -> C(x(t+h; p)): B p = -C/h with B = J_pred M^-1 J_n^T, the rows'
     // Jacobian taken at the predicted state (Bender's fixed J_n M^-1 J_n^T contracts only by
     // ~h|omega| per pass and fails on a whipping chain's tip). B turns singular where a chain
-    // passes a straight configuration, so the step is Levenberg-Marquardt damped:
-    // (B^T B + mu I) p = B^T (-C/h), mu shrunk after a success and grown until the error drops.
+    // passes a straight configuration: solved as (B^T B + mu I) p = B^T (-C/h) with a tiny mu.
+    // A step that does not halve |C| means SHAKE has no root near: the remaining passes project
+    // (below). Retrying with a larger mu (Levenberg-Marquardt) only delayed that projection
+    // (docs/benchmarks.md "The joint correction's passes").
     assemble(state, w.predicted, nullptr, compliance, w);  // M^-1 J^T of the start, as above
     w.target = -drift / h;
     normalEquations(w.target, w);
     double scaleOfNormal = 0.0;
     for (const int e : w.normalDiagonal)
       scaleOfNormal = std::max(scaleOfNormal, w.normal[w.normalSource[e]]);
+    if (!factorizeNormal(kRegularization * scaleOfNormal, w)) break;
+    if (w.normalByBlocks)
+      w.normalBlockLdlt.solve(w.rhs, p);
+    else
+      w.normalLdlt.solve(w.rhs, p);
+    if (!p.allFinite()) break;
     saveVelocities();
     const double norm = drift.norm();
-    double trial = largest;
-    bool improved = false;
-    for (int attempt = 0; attempt < 12 && !improved; ++attempt) {
-      if (!factorizeNormal(damping * scaleOfNormal, w)) break;
-      if (w.normalByBlocks)
-        w.normalBlockLdlt.solve(w.rhs, p);
-      else
-        w.normalLdlt.solve(w.rhs, p);
-      if (!p.allFinite()) break;
-      applyImpulse(p, w.start);
-      trial = predictErrors();
-      improved = drift.norm() < norm;
-      if (improved) {
-        damping = std::max(damping * 0.1, 1e-12);
-      } else {
-        restoreVelocities();
-        damping *= 10.0;
-      }
-    }
-    if (!improved) {
-      predictErrors();  // velocities restored: refresh the predicted errors
+    std::swap(w.predicted, w.predictedBefore);  // kept, to be restored if the step fails
+    w.driftBefore = drift;
+    applyImpulse(p, w.start);
+    const double trial = predictErrors();
+    if (!(drift.norm() < norm)) {
+      restoreVelocities();
+      std::swap(w.predicted, w.predictedBefore);
+      drift = w.driftBefore;
       break;
     }
     total += p;

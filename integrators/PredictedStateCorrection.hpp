@@ -7,14 +7,15 @@
 //   2. evaluate each joint's C at the predicted poses: the drift d(t+h) the step would leave;
 //   3. take a Newton step on p -> C(t+h; p): B p = -d/h with B = J_pred M^-1 J^T (the impulse
 //      along the start-of-step rows J, the error measured along the rows at the predicted state),
-//      Levenberg-Marquardt damped, (B^T B + mu I) p = B^T (-d/h), B carrying a tiny compliance
+//      solved as (B^T B + mu I) p = B^T (-d/h) with a tiny mu, B carrying a tiny compliance
 //      eps I (eps = 1e-10 max diag(J M^-1 J^T)) so redundant rows, e.g. a closed loop of hinges,
 //      stay solvable (docs/solver-derivations.md sec. 10); B^T B factorized by sparse LDL^T
 //      analysed once per joint structure (solvers/direct/SparseLdlt; by 3 x 3 blocks,
 //      solvers/direct/BlockLdlt, when every joint has 3 rows), and dv = M^-1 J^T p applied;
 //   4. repeat until every |C(t+h)| <= tolerance or the iteration cap;
-//   5. if a pass stalls (|C| not halved: SHAKE has no root near, e.g. a heavy load on light
-//      links), the remaining passes project along the rows at the predicted state instead.
+//   5. if a pass stalls (|C| not halved or not reduced: SHAKE has no root near, e.g. a whip or
+//      a heavy load on light links), the remaining passes project along the rows at the
+//      predicted state instead.
 // The converged velocity moves the bodies exactly onto the constraint manifold. With the
 // velocity-level impulse of the solve along the same J^T, the whole step is the SHAKE
 // discretisation (Ryckaert, Ciccotti, Berendsen 1977), which is symplectic: joint drift is
@@ -91,12 +92,12 @@ struct PredictedStateWorkspace {
   std::vector<int> normalDiagonalSource;              // per joint: (j, j)'s index in normalPairs
   std::vector<solvers::BlockLdltOf<3>::Block> normalBlockDiagonal, normalBlockCoupling;
   // The iteration.
-  std::vector<joints::ConstraintEval> start, predicted, along;
+  std::vector<joints::ConstraintEval> start, predicted, predictedBefore, along;
   std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>> minvJt;  // per touch
   std::vector<double> b, normal, entries;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> saved;
   std::vector<geometry::Pose> predictedPoses;  // per touched body (as `bodies`), per pass
-  Eigen::VectorXd drift, total, p, rhs, target;
+  Eigen::VectorXd drift, driftBefore, total, p, rhs, target;
 };
 
 /// Corrects the velocities of the dynamic bodies of `joints` (bodies index `state`; an invalid
