@@ -166,12 +166,22 @@ void buildStructure(const geometry::BodyState& state,
     w.normalBlockLdlt.analyze(jointCount, w.normalBlockPairs);
     w.normalBlockDiagonal.resize(jointCount);
     w.normalBlockCoupling.resize(w.normalBlockPairs.size());
+    // J M^-1 J^T's blocks (a, b), a > b, for the projection passes.
+    w.symmetricBlockPairs.clear();
+    w.symmetricBlockSource.clear();
+    for (std::size_t q = 0; q < w.pairs.size(); ++q)
+      if (w.pairs[q].first > w.pairs[q].second) {
+        w.symmetricBlockPairs.push_back(w.pairs[q]);
+        w.symmetricBlockSource.push_back(static_cast<int>(q));
+      }
+    // Analysed now, though only the projection passes use it: analysed on first use, it
+    // allocated in whichever steady step first needed a projection (a chain's first stalled whip).
+    w.symmetricBlockLdlt.analyze(jointCount, w.symmetricBlockPairs);
+    w.symmetricBlockCoupling.resize(w.symmetricBlockPairs.size());
   } else {
     w.normalLdlt.analyze(n, w.normalRows, w.normalCols);
+    w.symmetricLdlt.analyze(n, w.symmetricRows, w.symmetricCols);  // as above
   }
-  // Analysed now, though only the projection passes use it: analysed on first use, it allocated
-  // in whichever steady step first needed a projection (a chain's first stalled whip).
-  w.symmetricLdlt.analyze(n, w.symmetricRows, w.symmetricCols);
   w.along.resize(jointCount);  // the projection's rows, copied into this storage
   w.b.assign(w.pairValues.back(), 0.0);
   w.normal.assign(w.normalValues.back(), 0.0);
@@ -455,12 +465,23 @@ void correctPredictedState(geometry::BodyState& state,
        ++pass) {
     w.along = w.predicted;
     assemble(state, w.along, &w.along, compliance, w);
-    w.entries.resize(w.symmetricSource.size());
-    for (std::size_t e = 0; e < w.symmetricSource.size(); ++e)
-      w.entries[e] = w.b[w.symmetricSource[e]];
-    if (!w.symmetricLdlt.factorize(w.entries)) break;
     w.target = -drift / h;
-    w.symmetricLdlt.solve(w.target, p);
+    if (w.normalByBlocks) {  // every joint 3 rows: by 3 x 3 blocks, as the Newton passes
+      for (int j = 0; j < jointCount; ++j)
+        w.normalBlockDiagonal[j] =
+            Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.diagonalPair[j]]);
+      for (std::size_t q = 0; q < w.symmetricBlockSource.size(); ++q)
+        w.symmetricBlockCoupling[q] =
+            Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.symmetricBlockSource[q]]);
+      if (!w.symmetricBlockLdlt.factorize(w.normalBlockDiagonal, w.symmetricBlockCoupling)) break;
+      w.symmetricBlockLdlt.solve(w.target, p);
+    } else {
+      w.entries.resize(w.symmetricSource.size());
+      for (std::size_t e = 0; e < w.symmetricSource.size(); ++e)
+        w.entries[e] = w.b[w.symmetricSource[e]];
+      if (!w.symmetricLdlt.factorize(w.entries)) break;
+      w.symmetricLdlt.solve(w.target, p);
+    }
     if (!p.allFinite()) break;
     saveVelocities();
     const double norm = drift.norm();

@@ -91,6 +91,12 @@ struct PredictedStateWorkspace {
   std::vector<int> normalBlockSource;                 // their indices in normalPairs
   std::vector<int> normalDiagonalSource;              // per joint: (j, j)'s index in normalPairs
   std::vector<solvers::BlockLdltOf<3>::Block> normalBlockDiagonal, normalBlockCoupling;
+  // The same for the projection's J M^-1 J^T: its blocks (a, b), a > b, and their indices in
+  // `pairs` (the diagonal blocks go through normalBlockDiagonal).
+  solvers::BlockLdltOf<3> symmetricBlockLdlt;
+  std::vector<std::pair<int, int>> symmetricBlockPairs;
+  std::vector<int> symmetricBlockSource;
+  std::vector<solvers::BlockLdltOf<3>::Block> symmetricBlockCoupling;
   // The iteration.
   std::vector<joints::ConstraintEval> start, predicted, predictedBefore, along;
   std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>> minvJt;  // per touch
