@@ -114,7 +114,9 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   };
   const Eigen::VectorXd* warm =
       options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr;
-  const Eigen::VectorXd* candidate = start ? start : warm;
+  // A direct solver (ignoresStart) computes its answer from no start: trying one would cost a
+  // residual (a product with W) for nothing.
+  const Eigen::VectorXd* candidate = ignoresStart() ? nullptr : start ? start : warm;
   if (candidate) {
     if (candidate->size() != n || !candidate->allFinite())
       report.note("start ignored (wrong size or not finite)");
