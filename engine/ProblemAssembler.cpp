@@ -28,6 +28,15 @@ void inverseMassTimesJacobianT(const geometry::BodyState& state,
                                const std::vector<Eigen::Matrix3d>& inverseInertias,
                                std::uint32_t body, const joints::RowJacobian& jacobian,
                                Matrix6k& out) {
+  if (jacobian.rows() == 3) {  // contacts and ball joints: fixed sizes (no dynamic products)
+    using J3 = Eigen::Matrix<double, 3, 6, Eigen::RowMajor>;
+    const Eigen::Map<const J3> rows(jacobian.data());
+    out.resize(6, 3);
+    Eigen::Map<Eigen::Matrix<double, 6, 3>> columns(out.data());
+    columns.topRows<3>() = state.inverseMasses[body] * rows.leftCols<3>().transpose();
+    columns.bottomRows<3>() = inverseInertias[body] * rows.rightCols<3>().transpose();
+    return;
+  }
   out.resize(6, jacobian.rows());
   out.topRows<3>() = state.inverseMasses[body] * jacobian.leftCols<3>().transpose();
   out.bottomRows<3>() = inverseInertias[body] * jacobian.rightCols<3>().transpose();
@@ -181,8 +190,14 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
       const geometry::BodyId& body = sideB ? block.bodyB : block.bodyA;
       if (!body.valid() || body.index >= state.size()) continue;
       const joints::RowJacobian& jac = sideB ? block.jacobianB : block.jacobianA;
-      u += jac.leftCols<3>() * state.linearVelocities[body.index] +
-           jac.rightCols<3>() * state.angularVelocities[body.index];
+      if (jac.rows() == 3) {  // fixed sizes, as inverseMassTimesJacobianT
+        const Eigen::Map<const Eigen::Matrix<double, 3, 6, Eigen::RowMajor>> rows3(jac.data());
+        u.head<3>() += rows3.leftCols<3>() * state.linearVelocities[body.index] +
+                       rows3.rightCols<3>() * state.angularVelocities[body.index];
+      } else {
+        u += jac.leftCols<3>() * state.linearVelocities[body.index] +
+             jac.rightCols<3>() * state.angularVelocities[body.index];
+      }
       if (!carriesUnknowns(state, body)) continue;
       touches.push_back({body.index, k, sideB});
       inverseMassTimesJacobianT(state, inertias, body.index, jac, minvJt[2 * k + (sideB ? 1 : 0)]);
