@@ -16,9 +16,32 @@ Eigen::Quaterniond rotateTorqueFree(const Eigen::Quaterniond& orientation,
       .normalized();
 }
 
+namespace {
+
+// The free symmetric top (moments I_e, I_e, I_u about principal axes, the unique one `axis`):
+// Q(t) = exp(t L / I_e) Q(0) exp(t pi_u (1/I_u - 1/I_e) e_u), L = Q pi (Landau and Lifshitz,
+// Mechanics, sec. 33, the regular precession). With exp(t L / I_e) Q = Q exp(t pi / I_e) both
+// factors act on the right: two rotations, exact at any step, no sub-stepping. A sphere (three
+// equal moments) is the case pi_u (1/I_u - 1/I_e) = 0.
+Eigen::Quaterniond rotateSymmetricTop(const Eigen::Quaterniond& toPrincipal,
+                                      const Eigen::Vector3d& bodyMomentum,
+                                      const Eigen::Vector3d& principalMoments, int axis, double h) {
+  const double equal = principalMoments[(axis + 1) % 3], own = principalMoments[axis];
+  const Eigen::Quaterniond precession = geometry::quaternionExp((h / equal) * bodyMomentum);
+  const double spin = h * bodyMomentum[axis] * (1.0 / own - 1.0 / equal);
+  if (spin == 0.0) return toPrincipal * precession;
+  return toPrincipal * precession * geometry::axisRotation(axis, spin);
+}
+
+}  // namespace
+
 Eigen::Quaterniond rotatePrincipalFrame(const Eigen::Quaterniond& toPrincipal,
                                         const Eigen::Vector3d& bodyMomentum,
                                         const Eigen::Vector3d& principalMoments, double h) {
+  // Two equal moments (capsules, cylinders, cubes, spheres): the exact flow, at any step.
+  const Eigen::Vector3d& m = principalMoments;
+  const int unique = m[0] == m[1] ? 2 : m[0] == m[2] ? 1 : m[1] == m[2] ? 0 : -1;
+  if (unique >= 0) return rotateSymmetricTop(toPrincipal, bodyMomentum, m, unique, h);
   // Q: principal axes -> world. The body momentum pi = Q^T L; the flow of T_k = pi_k^2/(2 I_k)
   // is Q <- Q R_k(t pi_k / I_k), pi <- R_k^T pi (DLM 1997, eqs. 3.5-3.7), so L = Q pi is unchanged.
   // R_k is a rotation about a coordinate axis: Q R_k and R_k^T pi are written out (half the

@@ -8,6 +8,9 @@
 // exactly (each sub-rotation moves orientation and body momentum together) and |pi| is preserved.
 // A step turns no axis by more than 1 rad: a faster spinner is sub-stepped, since at radians
 // per step the splitting error pumps energy into the axis of the smallest moment.
+// Bodies with two equal principal moments (symmetric tops: capsules, cylinders, cubes, spheres)
+// take the exact flow instead, a regular precession (FreeRotation.cpp): two rotations, exact at
+// any step; the splitting is for bodies with three different moments.
 #include <coulomb/geometry/BodyState.hpp>
 
 #include <Eigen/Geometry>
