@@ -1,5 +1,6 @@
 #include <coulomb/solvers/direct/EqualityLdltSolver.hpp>
 
+#include <algorithm>
 #include <vector>
 
 namespace coulomb::solvers {
@@ -37,42 +38,110 @@ bool rowsInThrees(const BlockSparseMatrix& W) {
 
 }  // namespace
 
+bool EqualityLdltSolver::blocksFromEntries(const BlockSparseMatrix& W, int n) const {
+  // Block (g, h) of W from rows 3g .. 3g+2, columns 3h .. 3h+2; the lower triangle's blocks are
+  // the pattern, in row order.
+  Workspace& w = workspace_;
+  if (!rowsInThrees(W)) return false;
+  const int groups = n / 3;
+  w.pairs.clear();
+  w.diagonal.resize(groups);
+  w.coupling.clear();
+  int diagonals = 0;
+  for (int g = 0; g < groups; ++g)
+    for (int k = W.rowBegin(3 * g); k < W.rowEnd(3 * g); k += 3) {
+      const int h = W.blockColumn(k) / 3;
+      if (h > g) continue;
+      BlockLdltOf<3>::Block block;
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c)
+          block(a, c) = W.blockValues(W.rowBegin(3 * g + a) + (k - W.rowBegin(3 * g)) + c)[0];
+      if (h == g) {
+        w.diagonal[g] = block;
+        ++diagonals;
+      } else {
+        w.pairs.emplace_back(g, h);
+        w.coupling.push_back(block);
+      }
+    }
+  return diagonals == groups;  // a W without some diagonal block: by entries
+}
+
+bool EqualityLdltSolver::blocksFromFactors(const BodySpaceDelassus& f) const {
+  // Rows in threes on the same bodies (a ball joint's three rows): block (g, h) = sum over the
+  // bodies g and h share of J_g,b M_b^-1 J_h,b^T, straight from the factors (W is not formed).
+  Workspace& w = workspace_;
+  const int n = f.size();
+  if (n == 0 || n % 3 != 0) return false;
+  const int groups = n / 3;
+  for (int b = 0; b < f.blockCount(); ++b)
+    if (f.blockSize(b) != 1) return false;
+  for (int g = 0; g < groups; ++g)
+    for (int a = 1; a < 3; ++a)
+      for (int side = 0; side < 2; ++side)
+        if (f.blockBody(3 * g + a, side) != f.blockBody(3 * g, side)) return false;
+  // The groups on each body, ascending (a counting sort by body).
+  std::vector<int>& start = w.bodyStart;
+  start.assign(f.bodyCount() + 1, 0);
+  for (int g = 0; g < groups; ++g)
+    for (int side = 0; side < 2; ++side)
+      if (const int body = f.blockBody(3 * g, side); body >= 0) ++start[body + 1];
+  for (int b = 0; b < f.bodyCount(); ++b) start[b + 1] += start[b];
+  w.bodyGroups.resize(start.back());
+  w.next.assign(start.begin(), start.end() - 1);
+  for (int g = 0; g < groups; ++g)
+    for (int side = 0; side < 2; ++side)
+      if (const int body = f.blockBody(3 * g, side); body >= 0) w.bodyGroups[w.next[body]++] = g;
+  const auto block = [&](int g, int h) {  // sum over the shared bodies, sides in order
+    BlockLdltOf<3>::Block value = BlockLdltOf<3>::Block::Zero();
+    for (int sg = 0; sg < 2; ++sg)
+      for (int sh = 0; sh < 2; ++sh) {
+        const int body = f.blockBody(3 * g, sg);
+        if (body < 0 || body != f.blockBody(3 * h, sh)) continue;
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) {
+            const double* row = f.jacobianRow(3 * g + a, sg);
+            const double* column = f.inverseMassColumn(3 * h + c, sh);
+            double sum = 0.0;
+            for (int k = 0; k < 6; ++k) sum += row[k] * column[k];
+            value(a, c) += sum;
+          }
+      }
+    return value;
+  };
+  w.pairs.clear();
+  w.coupling.clear();
+  w.diagonal.resize(groups);
+  std::vector<int>& lower = w.lower;
+  for (int g = 0; g < groups; ++g) {
+    w.diagonal[g] = block(g, g);
+    lower.clear();
+    for (int side = 0; side < 2; ++side)
+      if (const int body = f.blockBody(3 * g, side); body >= 0)
+        for (int k = start[body]; k < start[body + 1]; ++k)
+          if (w.bodyGroups[k] < g) lower.push_back(w.bodyGroups[k]);
+    std::sort(lower.begin(), lower.end());
+    lower.erase(std::unique(lower.begin(), lower.end()), lower.end());
+    for (const int h : lower) {
+      w.pairs.emplace_back(g, h);
+      w.coupling.push_back(block(g, h));
+    }
+  }
+  return true;
+}
+
 void EqualityLdltSolver::solvePrepared(const PreparedProblem& p, const SolveContext& context,
                                        Eigen::VectorXd& r, SolverReport& report) const {
-  const BlockSparseMatrix& W = p.W;
   const int n = p.size();
   Workspace& w = workspace_;
   report.iterations = 1;
   report.nativeResidualName = "common residual of the direct solve";
-  bool byBlocks = rowsInThrees(W);
-  if (byBlocks) {
-    // Block (g, h) of W from rows 3g .. 3g+2, columns 3h .. 3h+2; the lower triangle's blocks
-    // are the pattern, in row order.
-    const int groups = n / 3;
-    w.pairs.clear();
-    w.diagonal.resize(groups);
-    w.coupling.clear();
-    int diagonals = 0;
-    for (int g = 0; g < groups; ++g)
-      for (int k = W.rowBegin(3 * g); k < W.rowEnd(3 * g); k += 3) {
-        const int h = W.blockColumn(k) / 3;
-        if (h > g) continue;
-        BlockLdltOf<3>::Block block;
-        for (int a = 0; a < 3; ++a)
-          for (int c = 0; c < 3; ++c)
-            block(a, c) = W.blockValues(W.rowBegin(3 * g + a) + (k - W.rowBegin(3 * g)) + c)[0];
-        if (h == g) {
-          w.diagonal[g] = block;
-          ++diagonals;
-        } else {
-          w.pairs.emplace_back(g, h);
-          w.coupling.push_back(block);
-        }
-      }
-    byBlocks = diagonals == groups;  // a W without some diagonal block: by entries
-    if (byBlocks && !w.blockLdlt.analyzed(groups, w.pairs)) w.blockLdlt.analyze(groups, w.pairs);
-  }
-  if (byBlocks ? !w.blockLdlt.factorize(w.diagonal, w.coupling) : !factorizeByEntries(W, n)) {
+  const bool byBlocks = p.bodySpace ? blocksFromFactors(*p.bodySpace) : blocksFromEntries(p.W, n);
+  if (byBlocks && !w.blockLdlt.analyzed(n / 3, w.pairs)) w.blockLdlt.analyze(n / 3, w.pairs);
+  const bool factorized =
+      byBlocks ? w.blockLdlt.factorize(w.diagonal, w.coupling)
+               : factorizeByEntries(p.bodySpace ? p.bodySpace->toBlockSparse() : p.W, n);
+  if (!factorized) {
     report.status = SolverStatus::NumericalFailure;
     report.note("LDL^T factorization failed (W singular: redundant rows?)");
     return;

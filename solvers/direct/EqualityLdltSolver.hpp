@@ -10,6 +10,7 @@
 // and the plan's fallback (ac_newton) takes over. Rows that come in threes with one pattern (ball
 // joints: chains, ropes) are factorized by 3 x 3 blocks (BlockLdlt), several times cheaper than
 // entry by entry.
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
 #include <coulomb/solvers/ContactSolver.hpp>
 #include <coulomb/solvers/direct/BlockLdlt.hpp>
 #include <coulomb/solvers/direct/SparseLdlt.hpp>
@@ -23,6 +24,9 @@ class EqualityLdltSolver final : public ContactSolver {
  public:
   [[nodiscard]] std::string name() const override { return "ldlt"; }
   [[nodiscard]] bool ignoresStart() const override { return true; }
+  // On body-space factors the 3 x 3 blocks are formed from J and M^-1 J^T directly (W's entries
+  // only for rows that do not come in threes).
+  [[nodiscard]] bool worksInBodySpace() const override { return true; }
   [[nodiscard]] std::optional<std::string> notApplicable(
       const ContactProblem& problem) const override;
   void solvePrepared(const PreparedProblem& problem, const SolveContext& context,
@@ -31,6 +35,10 @@ class EqualityLdltSolver final : public ContactSolver {
  private:
   // The scalar path: W's lower triangle as entries, factorized by workspace_.ldlt.
   bool factorizeByEntries(const BlockSparseMatrix& W, int n) const;
+  // W as 3 x 3 blocks (workspace_.pairs, diagonal, coupling) when its rows come in threes: from
+  // W's entries, or from body-space factors. False when they do not.
+  bool blocksFromEntries(const BlockSparseMatrix& W, int n) const;
+  bool blocksFromFactors(const BodySpaceDelassus& factors) const;
   struct Workspace {  // kept between solves (ContactSolver::solve: one instance, one thread)
     SparseLdlt ldlt;
     std::vector<int> rows, cols;
@@ -38,6 +46,7 @@ class EqualityLdltSolver final : public ContactSolver {
     BlockLdltOf<3> blockLdlt;  // rows in threes
     std::vector<std::pair<int, int>> pairs;
     std::vector<BlockLdltOf<3>::Block> diagonal, coupling;
+    std::vector<int> bodyStart, bodyGroups, next, lower;  // blocksFromFactors: groups per body
     Eigen::VectorXd rhs, x, u;
   };
   mutable Workspace workspace_;

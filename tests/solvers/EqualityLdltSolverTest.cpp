@@ -120,3 +120,44 @@ TEST(EqualityLdltSolver, RowsInThreesAreSolvedByBlocksAsByEntries) {
     EXPECT_LT((out.impulses - reference).norm(), 1e-12 * reference.norm()) << rows << " rows";
   }
 }
+
+TEST(EqualityLdltSolver, BodySpaceRowsInThreesAreSolvedFromTheFactors) {
+  // A chain of 40 ball joints in body space (as the assembler gives an island above its explicit
+  // row limit): joint g joins body g - 1 (the world for g = 0) and body g, three 1-row blocks on
+  // the same bodies. The blocks formed from J and M^-1 J^T must give the dense answer; so must
+  // the entry path when one row of the last joint is moved onto other bodies (no longer threes).
+  const int joints = 40;
+  for (const bool broken : {false, true}) {
+    auto factors = std::make_shared<BodySpaceDelassus>(joints, std::vector<int>(3 * joints, 1));
+    std::srand(3);
+    std::vector<Eigen::Matrix<double, 6, 6>> inverseMass(joints);
+    for (int b = 0; b < joints; ++b) {
+      const Eigen::Matrix<double, 6, 6> a = Eigen::Matrix<double, 6, 6>::Random();
+      inverseMass[b] = a * a.transpose() + Eigen::Matrix<double, 6, 6>::Identity();
+    }
+    for (int g = 0; g < joints; ++g)
+      for (int a = 0; a < 3; ++a) {
+        const int row = 3 * g + a;
+        const bool moved = broken && g == joints - 1 && a == 2;
+        const int bodyA = moved ? 0 : g - 1, bodyB = moved ? 1 : g;
+        for (int side = 0; side < 2; ++side) {
+          const int body = side == 0 ? bodyA : bodyB;
+          if (body < 0) continue;
+          const Eigen::Matrix<double, 1, 6> J = Eigen::Matrix<double, 1, 6>::Random();
+          const Eigen::Matrix<double, 6, 1> G = inverseMass[body] * J.transpose();
+          factors->setSide(row, side, body, J, G);
+        }
+      }
+    ContactProblem p;
+    p.name = "ball joints, body space";
+    p.q = Eigen::VectorXd::LinSpaced(3 * joints, -1.0, 2.0);
+    p.blocks.assign(3 * joints, ConstraintBlock::equality());
+    p.W = DelassusOperator::bodySpace(factors);
+    const SolveOutcome out = EqualityLdltSolver().solve(p, {});
+    EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+    const Eigen::MatrixXd W = p.W.toBlockSparse(p.blockSizes()).toDense();
+    const Eigen::VectorXd reference = W.ldlt().solve(-p.q);
+    EXPECT_LT((out.impulses - reference).norm(), 1e-10 * reference.norm())
+        << (broken ? "entries" : "blocks");
+  }
+}
