@@ -23,7 +23,7 @@ geometry::Pose predictedPoseOf(const geometry::BodyState& state, const geometry:
 
 using Workspace = PredictedStateWorkspace;
 using Matrix6k = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
-using Block3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;  // a block of B or B^T B, 3-row joints
+using Block3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;  // a block of B, 3-row joints
 using Rows3 = Eigen::Matrix<double, 3, 6, Eigen::RowMajor>;   // a ball joint's side of J
 
 // The structure's identity: per joint its row count and which of its bodies carry unknowns.
@@ -37,8 +37,8 @@ void structureKey(const geometry::BodyState& state, std::span<const joints::Join
   }
 }
 
-// Which joints share a body, the terms of B = J_rows M^-1 J_impulses^T per block, the blocks of
-// B^T B and the scalar entries of both symmetric systems. Runs when the structure changes only.
+// Which joints share a body, the terms of B = J_rows M^-1 J_impulses^T per block, and the patterns
+// of B (for its LU) and of J M^-1 J^T (for its LDL^T). Runs when the structure changes only.
 void buildStructure(const geometry::BodyState& state,
                     std::span<const joints::JointDef* const> joints, Workspace& w) {
   const auto jointCount = static_cast<int>(joints.size());
@@ -75,9 +75,6 @@ void buildStructure(const geometry::BodyState& state,
   w.pairValues.assign(w.pairs.size() + 1, 0);
   for (std::size_t q = 0; q < w.pairs.size(); ++q)
     w.pairValues[q + 1] = w.pairValues[q] + rows(w.pairs[q].first) * rows(w.pairs[q].second);
-  w.firstPairOf.assign(jointCount + 1, 0);
-  for (const auto& [a, b] : w.pairs) ++w.firstPairOf[a + 1];
-  for (int j = 0; j < jointCount; ++j) w.firstPairOf[j + 1] += w.firstPairOf[j];
   w.diagonalPair.resize(jointCount);
   for (int j = 0; j < jointCount; ++j) w.diagonalPair[j] = pairIndex(j, j);
   // Terms in the order the triplets of the first version were summed: body, then a, then b.
@@ -92,99 +89,64 @@ void buildStructure(const geometry::BodyState& state,
     g = end;
   }
 
-  // B^T B: block (i, j) = sum over k of B(k, i)^T B(k, j), for i >= j.
-  w.normalPairs.clear();
-  for (int k = 0; k < jointCount; ++k)
-    for (int x = w.firstPairOf[k]; x < w.firstPairOf[k + 1]; ++x)
-      for (int y = w.firstPairOf[k]; y < w.firstPairOf[k + 1]; ++y)
-        if (w.pairs[x].second >= w.pairs[y].second)
-          w.normalPairs.emplace_back(w.pairs[x].second, w.pairs[y].second);
-  std::sort(w.normalPairs.begin(), w.normalPairs.end());
-  w.normalPairs.erase(std::unique(w.normalPairs.begin(), w.normalPairs.end()), w.normalPairs.end());
-  w.normalValues.assign(w.normalPairs.size() + 1, 0);
-  for (std::size_t q = 0; q < w.normalPairs.size(); ++q)
-    w.normalValues[q + 1] =
-        w.normalValues[q] + rows(w.normalPairs[q].first) * rows(w.normalPairs[q].second);
-  w.normalTerms.clear();
-  for (int k = 0; k < jointCount; ++k)
-    for (int x = w.firstPairOf[k]; x < w.firstPairOf[k + 1]; ++x)
-      for (int y = w.firstPairOf[k]; y < w.firstPairOf[k + 1]; ++y) {
-        const int i = w.pairs[x].second, j = w.pairs[y].second;
-        if (i < j) continue;
-        const auto target = static_cast<int>(
-            std::lower_bound(w.normalPairs.begin(), w.normalPairs.end(), std::pair{i, j}) -
-            w.normalPairs.begin());
-        w.normalTerms.push_back({x, y, target});
-      }
-
-  // Scalar lower-triangle entries: of B^T B (+ shifts), and of the symmetric J M^-1 J^T.
-  w.normalRows.clear();
-  w.normalCols.clear();
-  w.normalSource.clear();
-  w.normalDiagonal.clear();
-  for (std::size_t q = 0; q < w.normalPairs.size(); ++q) {
-    const auto [i, j] = w.normalPairs[q];
-    for (int r = 0; r < rows(i); ++r)
-      for (int c = 0; c < rows(j); ++c) {
-        if (i == j && c > r) continue;
-        if (i == j && c == r) w.normalDiagonal.push_back(static_cast<int>(w.normalRows.size()));
-        w.normalRows.push_back(w.offset[i] + r);
-        w.normalCols.push_back(w.offset[j] + c);
-        w.normalSource.push_back(w.normalValues[q] + r * rows(j) + c);
-      }
-  }
-  w.symmetricRows.clear();
-  w.symmetricCols.clear();
-  w.symmetricSource.clear();
-  for (std::size_t q = 0; q < w.pairs.size(); ++q) {
-    const auto [a, b] = w.pairs[q];
-    if (a < b) continue;
-    for (int r = 0; r < rows(a); ++r)
-      for (int c = 0; c < rows(b); ++c) {
-        if (a == b && c > r) continue;
-        w.symmetricRows.push_back(w.offset[a] + r);
-        w.symmetricCols.push_back(w.offset[b] + c);
-        w.symmetricSource.push_back(w.pairValues[q] + r * rows(b) + c);
-      }
-  }
+  // The pattern of B and of J M^-1 J^T: by 3 x 3 blocks, or entry by entry.
   const int n = w.offset[jointCount];
-  w.normalByBlocks =
+  w.byBlocks =
       std::all_of(w.start.begin(), w.start.end(), [](const auto& e) { return e.rows() == 3; });
-  if (w.normalByBlocks) {
-    w.normalBlockPairs.clear();
-    w.normalBlockSource.clear();
-    w.normalDiagonalSource.assign(jointCount, -1);
-    for (std::size_t q = 0; q < w.normalPairs.size(); ++q) {
-      const auto [i, j] = w.normalPairs[q];
-      if (i == j) {
-        w.normalDiagonalSource[i] = static_cast<int>(q);
-      } else {
-        w.normalBlockPairs.emplace_back(i, j);
-        w.normalBlockSource.push_back(static_cast<int>(q));
-      }
-    }
-    w.normalBlockLdlt.analyze(jointCount, w.normalBlockPairs);
-    w.normalBlockDiagonal.resize(jointCount);
-    w.normalBlockCoupling.resize(w.normalBlockPairs.size());
-    // J M^-1 J^T's blocks (a, b), a > b, for the projection passes.
-    w.symmetricBlockPairs.clear();
-    w.symmetricBlockSource.clear();
+  if (w.byBlocks) {
+    w.blockPairs.clear();
+    w.blockSource.clear();
+    w.blockMirrorSource.clear();
     for (std::size_t q = 0; q < w.pairs.size(); ++q)
       if (w.pairs[q].first > w.pairs[q].second) {
-        w.symmetricBlockPairs.push_back(w.pairs[q]);
-        w.symmetricBlockSource.push_back(static_cast<int>(q));
+        w.blockPairs.push_back(w.pairs[q]);
+        w.blockSource.push_back(static_cast<int>(q));
+        w.blockMirrorSource.push_back(pairIndex(w.pairs[q].second, w.pairs[q].first));
       }
+    w.newtonBlockLu.analyze(jointCount, w.blockPairs);
     // Analysed now, though only the projection passes use it: analysed on first use, it
     // allocated in whichever steady step first needed a projection (a chain's first stalled whip).
-    w.symmetricBlockLdlt.analyze(jointCount, w.symmetricBlockPairs);
-    w.symmetricBlockCoupling.resize(w.symmetricBlockPairs.size());
+    w.symmetricBlockLdlt.analyze(jointCount, w.blockPairs);
+    w.blockDiagonal.resize(jointCount);
+    w.blockCoupling.resize(w.blockPairs.size());
+    w.blockMirrored.resize(w.blockPairs.size());
   } else {
-    w.normalLdlt.analyze(n, w.normalRows, w.normalCols);
+    w.scalarPairs.clear();
+    w.scalarSource.clear();
+    w.scalarMirrorSource.clear();
+    w.scalarDiagonalSource.assign(n, 0);
+    w.symmetricRows.clear();
+    w.symmetricCols.clear();
+    w.symmetricSource.clear();
+    for (std::size_t q = 0; q < w.pairs.size(); ++q) {
+      const auto [a, b] = w.pairs[q];
+      if (a < b) continue;
+      const int mirror = pairIndex(b, a);
+      for (int r = 0; r < rows(a); ++r)
+        for (int c = 0; c < rows(b); ++c) {
+          if (a == b && c > r) continue;
+          const int row = w.offset[a] + r, col = w.offset[b] + c;
+          const int source = w.pairValues[q] + r * rows(b) + c;
+          w.symmetricRows.push_back(row);
+          w.symmetricCols.push_back(col);
+          w.symmetricSource.push_back(source);
+          if (row == col) {
+            w.scalarDiagonalSource[row] = source;
+          } else {
+            w.scalarPairs.emplace_back(row, col);
+            w.scalarSource.push_back(source);
+            w.scalarMirrorSource.push_back(w.pairValues[mirror] + c * rows(a) + r);
+          }
+        }
+    }
+    w.newtonLu.analyze(n, w.scalarPairs);
     w.symmetricLdlt.analyze(n, w.symmetricRows, w.symmetricCols);  // as above
+    w.scalarDiagonal.resize(n);
+    w.scalarCoupling.resize(w.scalarPairs.size());
+    w.scalarMirrored.resize(w.scalarPairs.size());
   }
   w.along.resize(jointCount);  // the projection's rows, copied into this storage
   w.b.assign(w.pairValues.back(), 0.0);
-  w.normal.assign(w.normalValues.back(), 0.0);
   w.minvJt.resize(w.touches.size());
 }
 
@@ -229,55 +191,40 @@ void assemble(const geometry::BodyState& state, const std::vector<joints::Constr
     }
 }
 
-// w.normal = B^T B from w.b; w.rhs = B^T v.
-void normalEquations(const Eigen::VectorXd& v, Workspace& w) {
-  std::fill(w.normal.begin(), w.normal.end(), 0.0);
-  auto rows = [&](int j) { return w.start[j].rows(); };
-  for (const Workspace::NormalTerm& t : w.normalTerms) {
-    const int k = w.pairs[t.left].first, i = w.pairs[t.left].second, j = w.pairs[t.right].second;
-    const double* left = w.b.data() + w.pairValues[t.left];    // rows(k) x rows(i)
-    const double* right = w.b.data() + w.pairValues[t.right];  // rows(k) x rows(j)
-    double* out = w.normal.data() + w.normalValues[t.target];  // rows(i) x rows(j)
-    if (w.normalByBlocks) {                                    // every block 3 x 3, row-major
-      Eigen::Map<Block3>(out).noalias() +=
-          Eigen::Map<const Block3>(left).transpose() * Eigen::Map<const Block3>(right);
-      continue;
+// Factorizes B (w.b, as assembled: B(a, b) and B(b, a) are separate blocks) by LU.
+bool factorizeNewton(Workspace& w) {
+  if (w.byBlocks) {
+    for (std::size_t j = 0; j < w.blockDiagonal.size(); ++j)
+      w.blockDiagonal[j] = Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.diagonalPair[j]]);
+    for (std::size_t q = 0; q < w.blockPairs.size(); ++q) {
+      w.blockCoupling[q] = Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.blockSource[q]]);
+      w.blockMirrored[q] =
+          Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.blockMirrorSource[q]]);
     }
-    for (int r = 0; r < rows(i); ++r)
-      for (int c = 0; c < rows(j); ++c) {
-        double sum = 0.0;
-        for (int s = 0; s < rows(k); ++s) sum += left[s * rows(i) + r] * right[s * rows(j) + c];
-        out[r * rows(j) + c] += sum;
-      }
+    return w.newtonBlockLu.factorize(w.blockDiagonal, w.blockCoupling, w.blockMirrored);
   }
-  w.rhs.setZero(v.size());
-  for (std::size_t q = 0; q < w.pairs.size(); ++q) {  // (B^T v)_i += B(k, i)^T v_k
-    const auto [k, i] = w.pairs[q];
-    const double* block = w.b.data() + w.pairValues[q];
-    for (int s = 0; s < rows(k); ++s)
-      for (int r = 0; r < rows(i); ++r)
-        w.rhs[w.offset[i] + r] += block[s * rows(i) + r] * v[w.offset[k] + s];
+  for (std::size_t e = 0; e < w.scalarDiagonal.size(); ++e)
+    w.scalarDiagonal[e](0, 0) = w.b[w.scalarDiagonalSource[e]];
+  for (std::size_t e = 0; e < w.scalarPairs.size(); ++e) {
+    w.scalarCoupling[e](0, 0) = w.b[w.scalarSource[e]];
+    w.scalarMirrored[e](0, 0) = w.b[w.scalarMirrorSource[e]];
   }
+  return w.newtonLu.factorize(w.scalarDiagonal, w.scalarCoupling, w.scalarMirrored);
 }
 
-// (B^T B + shift I), factorized by 3 x 3 blocks or entry by entry (PredictedStateWorkspace).
-bool factorizeNormal(double shift, Workspace& w) {
-  if (w.normalByBlocks) {
-    for (std::size_t j = 0; j < w.normalBlockDiagonal.size(); ++j) {
-      w.normalBlockDiagonal[j] =
-          Eigen::Map<const Block3>(w.normal.data() + w.normalValues[w.normalDiagonalSource[j]]);
-      w.normalBlockDiagonal[j].diagonal().array() += shift;
-    }
-    for (std::size_t p = 0; p < w.normalBlockCoupling.size(); ++p)
-      w.normalBlockCoupling[p] =
-          Eigen::Map<const Block3>(w.normal.data() + w.normalValues[w.normalBlockSource[p]]);
-    return w.normalBlockLdlt.factorize(w.normalBlockDiagonal, w.normalBlockCoupling);
+// Factorizes the symmetric J M^-1 J^T of the projection (w.b assembled with the same rows twice).
+bool factorizeSymmetric(Workspace& w) {
+  if (w.byBlocks) {
+    for (std::size_t j = 0; j < w.blockDiagonal.size(); ++j)
+      w.blockDiagonal[j] = Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.diagonalPair[j]]);
+    for (std::size_t q = 0; q < w.blockPairs.size(); ++q)
+      w.blockCoupling[q] = Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.blockSource[q]]);
+    return w.symmetricBlockLdlt.factorize(w.blockDiagonal, w.blockCoupling);
   }
-  w.entries.resize(w.normalSource.size());
-  for (std::size_t e = 0; e < w.normalSource.size(); ++e)
-    w.entries[e] = w.normal[w.normalSource[e]];
-  for (const int e : w.normalDiagonal) w.entries[e] += shift;
-  return w.normalLdlt.factorize(w.entries);
+  w.entries.resize(w.symmetricSource.size());
+  for (std::size_t e = 0; e < w.symmetricSource.size(); ++e)
+    w.entries[e] = w.b[w.symmetricSource[e]];
+  return w.symmetricLdlt.factorize(w.entries);
 }
 
 }  // namespace
@@ -417,26 +364,20 @@ void correctPredictedState(geometry::BodyState& state,
   Eigen::VectorXd& total = w.total;
   total.setZero(n);
   Eigen::VectorXd& p = w.p;
-  constexpr double kRegularization = 1e-12;  // mu relative to max diag(B^T B): B may be singular
   for (int pass = 0; pass < settings.iterations && largest > settings.tolerance; ++pass) {
     // Newton step on p -> C(x(t+h; p)): B p = -C/h with B = J_pred M^-1 J_n^T, the rows'
     // Jacobian taken at the predicted state (Bender's fixed J_n M^-1 J_n^T contracts only by
-    // ~h|omega| per pass and fails on a whipping chain's tip). B turns singular where a chain
-    // passes a straight configuration: solved as (B^T B + mu I) p = B^T (-C/h) with a tiny mu.
-    // A step that does not halve |C| means SHAKE has no root near: the remaining passes project
-    // (below). Retrying with a larger mu (Levenberg-Marquardt) only delayed that projection
-    // (docs/benchmarks.md "The joint correction's passes").
+    // ~h|omega| per pass and fails on a whipping chain's tip). Solved by LU: B is not symmetric,
+    // and the normal equations B^T B would square its condition and cost a product per block.
+    // A step that does not halve |C| means SHAKE has no root near (B turns singular where a chain
+    // passes a straight configuration): the remaining passes project (below).
     assemble(state, w.predicted, nullptr, compliance, w);  // M^-1 J^T of the start, as above
     w.target = -drift / h;
-    normalEquations(w.target, w);
-    double scaleOfNormal = 0.0;
-    for (const int e : w.normalDiagonal)
-      scaleOfNormal = std::max(scaleOfNormal, w.normal[w.normalSource[e]]);
-    if (!factorizeNormal(kRegularization * scaleOfNormal, w)) break;
-    if (w.normalByBlocks)
-      w.normalBlockLdlt.solve(w.rhs, p);
+    if (!factorizeNewton(w)) break;
+    if (w.byBlocks)
+      w.newtonBlockLu.solve(w.target, p);
     else
-      w.normalLdlt.solve(w.rhs, p);
+      w.newtonLu.solve(w.target, p);
     if (!p.allFinite()) break;
     saveVelocities();
     const double norm = drift.norm();
@@ -466,22 +407,11 @@ void correctPredictedState(geometry::BodyState& state,
     w.along = w.predicted;
     assemble(state, w.along, &w.along, compliance, w);
     w.target = -drift / h;
-    if (w.normalByBlocks) {  // every joint 3 rows: by 3 x 3 blocks, as the Newton passes
-      for (int j = 0; j < jointCount; ++j)
-        w.normalBlockDiagonal[j] =
-            Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.diagonalPair[j]]);
-      for (std::size_t q = 0; q < w.symmetricBlockSource.size(); ++q)
-        w.symmetricBlockCoupling[q] =
-            Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.symmetricBlockSource[q]]);
-      if (!w.symmetricBlockLdlt.factorize(w.normalBlockDiagonal, w.symmetricBlockCoupling)) break;
+    if (!factorizeSymmetric(w)) break;
+    if (w.byBlocks)
       w.symmetricBlockLdlt.solve(w.target, p);
-    } else {
-      w.entries.resize(w.symmetricSource.size());
-      for (std::size_t e = 0; e < w.symmetricSource.size(); ++e)
-        w.entries[e] = w.b[w.symmetricSource[e]];
-      if (!w.symmetricLdlt.factorize(w.entries)) break;
+    else
       w.symmetricLdlt.solve(w.target, p);
-    }
     if (!p.allFinite()) break;
     saveVelocities();
     const double norm = drift.norm();

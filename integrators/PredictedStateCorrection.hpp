@@ -7,11 +7,10 @@
 //   2. evaluate each joint's C at the predicted poses: the drift d(t+h) the step would leave;
 //   3. take a Newton step on p -> C(t+h; p): B p = -d/h with B = J_pred M^-1 J^T (the impulse
 //      along the start-of-step rows J, the error measured along the rows at the predicted state),
-//      solved as (B^T B + mu I) p = B^T (-d/h) with a tiny mu, B carrying a tiny compliance
-//      eps I (eps = 1e-10 max diag(J M^-1 J^T)) so redundant rows, e.g. a closed loop of hinges,
-//      stay solvable (docs/solver-derivations.md sec. 10); B^T B factorized by sparse LDL^T
-//      analysed once per joint structure (solvers/direct/SparseLdlt; by 3 x 3 blocks,
-//      solvers/direct/BlockLdlt, when every joint has 3 rows), and dv = M^-1 J^T p applied;
+//      B carrying a tiny compliance eps I (eps = 1e-10 max diag(J M^-1 J^T)) so redundant rows,
+//      e.g. a closed loop of hinges, stay solvable (docs/solver-derivations.md sec. 10); B
+//      factorized by a sparse LU analysed once per joint structure (solvers/direct/BlockLu: by
+//      3 x 3 blocks when every joint has 3 rows, else entry by entry), and dv = M^-1 J^T p applied;
 //   4. repeat until every |C(t+h)| <= tolerance or the iteration cap;
 //   5. if a pass stalls (|C| not halved or not reduced: SHAKE has no root near, e.g. a whip or
 //      a heavy load on light links), the remaining passes project along the rows at the
@@ -27,6 +26,7 @@
 #include <coulomb/joints/RowBlock.hpp>
 #include <coulomb/joints/Stabilization.hpp>
 #include <coulomb/solvers/direct/BlockLdlt.hpp>
+#include <coulomb/solvers/direct/BlockLu.hpp>
 #include <coulomb/solvers/direct/SparseLdlt.hpp>
 
 #include <Eigen/Core>
@@ -51,9 +51,9 @@ struct PredictedStateResult {
 geometry::Pose predictPose(const geometry::BodyState& state, std::size_t i, double h);
 
 /// What the correction keeps between steps: the structure of its matrices (which joints share a
-/// body, the patterns of B and B^T B, their LDL^T analyses), rebuilt only when the joints, their
-/// row counts or which of their bodies are dynamic change, and every vector of the iteration. With
-/// it a steady step's correction allocates nothing.
+/// body, the pattern of B, its LU and LDL^T analyses), rebuilt only when the joints, their row
+/// counts or which of their bodies are dynamic change, and every vector of the iteration. With it
+/// a steady step's correction allocates nothing.
 struct PredictedStateWorkspace {
   struct Touch {  // a joint's side on a dynamic body; sorted by body, then joint, then side
     std::uint32_t body = 0;
@@ -63,47 +63,40 @@ struct PredictedStateWorkspace {
   struct Term {  // block `pair` += rows of touch `row` times M^-1 (rows of touch `column`)^T
     int row = 0, column = 0, pair = 0;
   };
-  struct NormalTerm {  // normal block `target` += B(k, i)^T B(k, j): pairs (k, i) and (k, j)
-    int left = 0, right = 0, target = 0;
-  };
   std::vector<int> key, keyScratch;  // rows and dynamic bodies per joint (structure's identity)
   std::vector<int> offset;
   std::vector<Touch> touches;
   std::vector<std::uint32_t> bodies;       // the touched bodies, ascending
   std::vector<std::pair<int, int>> pairs;  // (a, b): joints sharing a body (and every (a, a))
   std::vector<int> pairValues;             // start of block (a, b) in `b`, rows(a) x rows(b)
-  std::vector<int> firstPairOf;            // pairs of joint a: [firstPairOf[a], firstPairOf[a+1])
   std::vector<int> diagonalPair;           // (a, a) per joint
   std::vector<Term> terms;
-  std::vector<std::pair<int, int>> normalPairs;  // (i, j), i >= j: blocks of B^T B
-  std::vector<int> normalValues;
-  std::vector<NormalTerm> normalTerms;
-  // Scalar lower-triangle entries of the two symmetric systems, as (value index) into the block
-  // values, and the positions of their diagonal entries.
-  std::vector<int> normalRows, normalCols, normalSource, normalDiagonal;
-  std::vector<int> symmetricRows, symmetricCols, symmetricSource;
-  solvers::SparseLdlt normalLdlt, symmetricLdlt;
-  // Every joint with 3 rows (ball joints: chains, ropes, ragdoll shoulders): B^T B factorized by
-  // 3 x 3 blocks (solvers/direct/BlockLdlt) instead of entry by entry, several times cheaper.
-  bool normalByBlocks = false;
-  solvers::BlockLdltOf<3> normalBlockLdlt;
-  std::vector<std::pair<int, int>> normalBlockPairs;  // the off-diagonal normalPairs, as (i, j)
-  std::vector<int> normalBlockSource;                 // their indices in normalPairs
-  std::vector<int> normalDiagonalSource;              // per joint: (j, j)'s index in normalPairs
-  std::vector<solvers::BlockLdltOf<3>::Block> normalBlockDiagonal, normalBlockCoupling;
-  // The same for the projection's J M^-1 J^T: its blocks (a, b), a > b, and their indices in
-  // `pairs` (the diagonal blocks go through normalBlockDiagonal).
+  // Every joint with 3 rows (ball joints: chains, ropes, ragdoll shoulders): B is factorized by
+  // 3 x 3 blocks (solvers/direct/BlockLu) and the projection's J M^-1 J^T likewise (BlockLdlt),
+  // several times cheaper than entry by entry. The pattern's pairs are the blocks (a, b), a > b,
+  // of `pairs`; their indices in `pairs`, and those of the mirrored blocks (b, a).
+  bool byBlocks = false;
+  std::vector<std::pair<int, int>> blockPairs;
+  std::vector<int> blockSource, blockMirrorSource;
+  solvers::BlockLuOf<3> newtonBlockLu;
   solvers::BlockLdltOf<3> symmetricBlockLdlt;
-  std::vector<std::pair<int, int>> symmetricBlockPairs;
-  std::vector<int> symmetricBlockSource;
-  std::vector<solvers::BlockLdltOf<3>::Block> symmetricBlockCoupling;
+  std::vector<solvers::BlockLdltOf<3>::Block> blockDiagonal, blockCoupling, blockMirrored;
+  // Otherwise entry by entry: the off-diagonal entries (r, c), r > c, of the pattern, the
+  // positions in `b` of B(r, c), B(c, r) and of the diagonal; and the lower triangle of the
+  // symmetric J M^-1 J^T (diagonal included) as (row, column, position in `b`).
+  std::vector<std::pair<int, int>> scalarPairs;
+  std::vector<int> scalarSource, scalarMirrorSource, scalarDiagonalSource;
+  solvers::BlockLuOf<1> newtonLu;
+  std::vector<solvers::BlockLuOf<1>::Block> scalarDiagonal, scalarCoupling, scalarMirrored;
+  std::vector<int> symmetricRows, symmetricCols, symmetricSource;
+  solvers::SparseLdlt symmetricLdlt;
   // The iteration.
   std::vector<joints::ConstraintEval> start, predicted, predictedBefore, along;
   std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>> minvJt;  // per touch
-  std::vector<double> b, normal, entries;
+  std::vector<double> b, entries;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> saved;
   std::vector<geometry::Pose> predictedPoses;  // per touched body (as `bodies`), per pass
-  Eigen::VectorXd drift, driftBefore, total, p, rhs, target;
+  Eigen::VectorXd drift, driftBefore, total, p, target;
 };
 
 /// Corrects the velocities of the dynamic bodies of `joints` (bodies index `state`; an invalid

@@ -11,6 +11,8 @@
 // the compiler vectorizes. On the 211 boxes of pyramid_20 this is several times faster than the
 // scalar SparseLdlt on the same matrix (docs/benchmarks.md "Sticking start"), which spends its time
 // walking the same block pattern one entry at a time.
+#include <coulomb/solvers/direct/SymbolicLdlt.hpp>
+
 #include <Eigen/Core>
 
 #include <utility>
@@ -29,27 +31,21 @@ class BlockLdltOf {
   /// Throws std::invalid_argument on an index out of range or row == col.
   void analyze(int blocks, const std::vector<std::pair<int, int>>& pairs);
   /// True when analyze() was given exactly this pattern (same count, same pairs in the same order).
-  [[nodiscard]] bool analyzed(int blocks, const std::vector<std::pair<int, int>>& pairs) const;
+  [[nodiscard]] bool analyzed(int blocks, const std::vector<std::pair<int, int>>& pairs) const {
+    return symbolic_.analyzed(blocks, pairs);
+  }
   /// Numeric factorization: `diagonal[i]` = A(i, i) (symmetric), `coupling[p]` = A(row, col) of
   /// pair p. False (and the factorization unusable) when a pivot block is singular or not finite.
   bool factorize(const std::vector<Block>& diagonal, const std::vector<Block>& coupling);
   /// x = A^-1 b with the last successful factorization (x may alias b).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
-  [[nodiscard]] int blockCount() const { return n_; }
-  [[nodiscard]] int factorBlocks() const { return lp_.empty() ? 0 : lp_.back(); }
+  [[nodiscard]] int blockCount() const { return symbolic_.n; }
+  [[nodiscard]] int factorBlocks() const { return symbolic_.lp.empty() ? 0 : symbolic_.lp.back(); }
 
  private:
-  struct Entry {  // A(i, k) = coupling[pair] (or its transpose) above the diagonal of column k
-    int i, pair;
-    bool transposed;
-  };
-  int n_ = -1;
-  std::vector<std::pair<int, int>> pairs_;  // the analyzed pattern, as given
-  std::vector<int> perm_, inverse_;         // perm_[original] = position; inverse_[position]
-  std::vector<int> ep_;                     // column k's entries: entries_[ep_[k] .. ep_[k+1])
-  std::vector<Entry> entries_;
-  std::vector<int> lp_, li_, parent_, lnz_, flag_, pattern_;  // L and the workspaces of Davis
+  BlockElimination symbolic_;
+  std::vector<int> li_, lnz_, flag_, pattern_;  // L's rows and the workspaces of Davis
   std::vector<Block> lx_, dInverse_, y_;
   Eigen::VectorXd work_;
 };

@@ -3,6 +3,9 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace coulomb::solvers {
 
 void amdOrdering(int n, const std::vector<std::pair<int, int>>& entries, std::vector<int>& perm) {
@@ -35,6 +38,34 @@ void eliminationTree(int n, const std::vector<int>& ap, const std::vector<int>& 
         flag[i] = k;
       }
   }
+}
+
+void BlockElimination::analyze(int blocks, const std::vector<std::pair<int, int>>& coupled) {
+  if (blocks < 0) throw std::invalid_argument("block factorization: negative block count");
+  for (const auto& [row, col] : coupled)
+    if (row < 0 || col < 0 || row >= blocks || col >= blocks || row == col)
+      throw std::invalid_argument("block factorization: a pair outside the matrix or diagonal");
+  n = blocks;
+  pairs = coupled;
+  amdOrdering(n, pairs, perm);
+  inverse.resize(n);
+  for (int i = 0; i < n; ++i) inverse[perm[i]] = i;
+
+  ep.assign(n + 1, 0);
+  for (const auto& [row, col] : pairs) ++ep[std::max(perm[row], perm[col]) + 1];
+  for (int k = 0; k < n; ++k) ep[k + 1] += ep[k];
+  entries.resize(pairs.size());
+  std::vector<int> next(ep.begin(), ep.end() - 1);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const int a = perm[pairs[p].first], b = perm[pairs[p].second];
+    entries[next[std::max(a, b)]++] = {std::min(a, b), static_cast<int>(p), a > b};
+  }
+
+  std::vector<int> rowsAbove(entries.size()), counts, flag;
+  for (std::size_t e = 0; e < entries.size(); ++e) rowsAbove[e] = entries[e].i;
+  eliminationTree(n, ep, rowsAbove, parent, counts, flag);
+  lp.assign(n + 1, 0);
+  for (int k = 0; k < n; ++k) lp[k + 1] = lp[k] + counts[k];
 }
 
 }  // namespace coulomb::solvers

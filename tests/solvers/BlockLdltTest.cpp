@@ -2,7 +2,7 @@
 // with the patterns of contact graphs (a tower, a pyramid's layers, a ring, pairs given in both
 // orientations), the analysis reused with new values, zero fill on trees, x aliasing b, and a
 // singular or non-finite pivot block reported; and of 3 x 3 blocks (BlockLdltOf<3>) with the
-// patterns of a ball-joint chain's and a branching mechanism's correction matrix B^T B.
+// patterns of a ball-joint chain's and a branching mechanism's normal matrix (a band of width 2).
 #include <coulomb/solvers/direct/BlockLdlt.hpp>
 
 #include <gtest/gtest.h>
@@ -137,7 +137,8 @@ TEST(BlockLdlt, ReportsASingularOrNonFinitePivot) {
 }
 
 TEST(BlockLdlt, SolvesAChainsCorrectionMatrixByThreeByThreeBlocks) {
-  // B^T B of a chain of ball joints: joint i couples with i - 1 and i - 2 (a pentadiagonal band).
+  // A normal matrix of a chain of ball joints: joint i couples with i - 1 and i - 2 (a
+  // pentadiagonal band).
   Pairs pairs;
   for (int i = 1; i < 50; ++i) {
     pairs.push_back({i, i - 1});
