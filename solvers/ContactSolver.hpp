@@ -54,7 +54,8 @@ class ContactSolver {
   // True for solvers whose solvePrepared() works on PreparedProblem::bodySpace (W never formed).
   [[nodiscard]] virtual bool worksInBodySpace() const { return false; }
   // True for solvers whose answer does not depend on the start (a direct factorization): no start
-  // is computed for them beyond the warm start and r = 0.
+  // is computed for them beyond the warm start and r = 0, and their one answer is measured once,
+  // by the common residual (also their native residual: solvePrepared leaves both to solve()).
   [[nodiscard]] virtual bool ignoresStart() const { return false; }
 
   [[nodiscard]] SolveOutcome solve(const ContactProblem& problem,

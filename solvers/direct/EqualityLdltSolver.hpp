@@ -39,6 +39,8 @@ class EqualityLdltSolver final : public ContactSolver {
   // W's entries, or from body-space factors. False when they do not.
   bool blocksFromEntries(const BlockSparseMatrix& W, int n) const;
   bool blocksFromFactors(const BodySpaceDelassus& factors) const;
+  // The pattern of those blocks and the products that sum them, from the groups' bodies.
+  void productsFromBodies(const BodySpaceDelassus& factors, int groups) const;
   struct Workspace {  // kept between solves (ContactSolver::solve: one instance, one thread)
     SparseLdlt ldlt;
     std::vector<int> rows, cols;
@@ -46,7 +48,13 @@ class EqualityLdltSolver final : public ContactSolver {
     BlockLdltOf<3> blockLdlt;  // rows in threes
     std::vector<std::pair<int, int>> pairs;
     std::vector<BlockLdltOf<3>::Block> diagonal, coupling;
-    std::vector<int> bodyStart, bodyGroups, next, lower;  // blocksFromFactors: groups per body
+    // blocksFromFactors: the bodies of each group (the pattern's identity), the groups per body,
+    // and the products J_g M^-1 J_h^T on a shared body that sum into each block.
+    struct Product {
+      int g, h, sideG, sideH, target;  // target: diagonal[target], or coupling[target - groups]
+    };
+    std::vector<int> groupBodies, bodyStart, bodyGroups, next, lower;
+    std::vector<Product> products;
     Eigen::VectorXd rhs, x, u;
   };
   mutable Workspace workspace_;
