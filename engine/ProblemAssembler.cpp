@@ -248,7 +248,12 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
     out.problem.warmStart.reset();
   }
 
-  const bool small = size <= settings_.sparseRowLimit;
+  // Equality rows only (a joint island: ldlt forms its 3 x 3 blocks from the factors) keep W
+  // factored at any size; other small islands get W's entries (Newton's dense path needs them).
+  bool equalityOnly = true;
+  for (const joints::RowBlock& b : rows.blocks)
+    equalityOnly = equalityOnly && b.kind == joints::RowKind::Equality;
+  const bool small = size <= settings_.sparseRowLimit && !equalityOnly;
   if (!small && treeBlocks.empty() && settings_.bodySpace) {
     // Large islands of free bodies: W stays factored (J, M^-1 J^T per side; BodySpaceDelassus),
     // O(rows) to build; Gauss-Seidel never forms W, other solvers build it once on demand.

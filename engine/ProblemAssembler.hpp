@@ -23,8 +23,9 @@ struct AssemblySettings {
   // [scalar unknowns] Islands with at most this many rows get W's entries, block-sparse (the
   // form every solver works on; a dense W would be converted to it by every solve).
   int sparseRowLimit = 96;
-  // Larger islands without articulation rows get W factored (solvers::BodySpaceDelassus: J and
-  // M^-1 J^T per block side, O(rows)) instead of block-sparse (O(nnz W), ~28 3x3 blocks per
+  // Larger islands without articulation rows, and islands of equality rows only at any size (a
+  // joint island, solved by ldlt from the factors), get W factored (solvers::BodySpaceDelassus: J
+  // and M^-1 J^T per block side, O(rows)) instead of block-sparse (O(nnz W), ~28 3x3 blocks per
   // contact on a pyramid). Gauss-Seidel then sweeps in body space; false = block-sparse W.
   bool bodySpace = true;
 };
