@@ -54,6 +54,10 @@ void buildStructure(const geometry::BodyState& state,
   w.bodies.clear();
   for (const auto& t : w.touches)
     if (w.bodies.empty() || w.bodies.back() != t.body) w.bodies.push_back(t.body);
+  w.sideBody.assign(2 * static_cast<std::size_t>(jointCount), -1);
+  for (const auto& t : w.touches)
+    w.sideBody[2 * t.joint + (t.sideB ? 1 : 0)] = static_cast<int>(
+        std::lower_bound(w.bodies.begin(), w.bodies.end(), t.body) - w.bodies.begin());
 
   // Pairs (a, b) of joints on one body, every (a, a) too (compliance on every row).
   w.pairs.clear();
@@ -155,20 +159,22 @@ const joints::RowJacobian& side(const std::vector<joints::ConstraintEval>& at,
   return t.sideB ? at[t.joint].jacobianB : at[t.joint].jacobianA;
 }
 
-// w.b = blocks of J_rows M^-1 J_impulses^T (the rows' Jacobians taken from `rowsAt`, the impulses'
-// from `impulsesAt`), plus `compliance` on every diagonal entry. Without `impulsesAt`, the
-// M^-1 J^T of the last call are used (the Newton passes share the start's).
-void assemble(const geometry::BodyState& state, const std::vector<joints::ConstraintEval>& rowsAt,
-              const std::vector<joints::ConstraintEval>* impulsesAt, double compliance,
-              Workspace& w) {
-  for (std::size_t t = 0; impulsesAt != nullptr && t < w.touches.size(); ++t) {
+// w.minvJt = M^-1 J^T per touch, J the rows of `impulsesAt` (the Newton passes share the start's).
+void inverseMassTimesRows(const geometry::BodyState& state,
+                          const std::vector<joints::ConstraintEval>& impulsesAt, Workspace& w) {
+  for (std::size_t t = 0; t < w.touches.size(); ++t) {
     const auto& touch = w.touches[t];
-    const joints::RowJacobian& J = side(*impulsesAt, touch);
+    const joints::RowJacobian& J = side(impulsesAt, touch);
     Matrix6k& out = w.minvJt[t];
     out.resize(6, J.rows());
     out.topRows<3>() = state.inverseMasses[touch.body] * J.leftCols<3>().transpose();
     out.bottomRows<3>() = state.worldInverseInertias[touch.body] * J.rightCols<3>().transpose();
   }
+}
+
+// w.b = blocks of J_rows M^-1 J^T (the rows' Jacobians taken from `rowsAt`, M^-1 J^T from
+// w.minvJt), plus `compliance` on every diagonal entry.
+void assemble(const std::vector<joints::ConstraintEval>& rowsAt, double compliance, Workspace& w) {
   std::fill(w.b.begin(), w.b.end(), 0.0);
   for (const Workspace::Term& term : w.terms) {
     const joints::RowJacobian& Ja = side(rowsAt, w.touches[term.row]);
@@ -288,14 +294,16 @@ void correctPredictedState(geometry::BodyState& state,
     w.keyScratch.swap(fresh);
   }
 
-  // A = J M^-1 J^T at the start: its largest diagonal scales the compliance of every row.
-  assemble(state, w.start, &w.start, 0.0, w);
-  double maxDiagonal = 0.0;
-  for (int j = 0; j < jointCount; ++j) {
-    const int q = w.diagonalPair[j], k = w.start[j].rows();
-    for (int r = 0; r < k; ++r)
-      maxDiagonal = std::max(maxDiagonal, w.b[w.pairValues[q] + r * k + r]);
+  // A = J M^-1 J^T at the start: its largest diagonal entry scales the compliance of every row.
+  inverseMassTimesRows(state, w.start, w);
+  w.target.setZero(n);  // the diagonal of A, summed over the joint's sides
+  for (std::size_t t = 0; t < w.touches.size(); ++t) {
+    const joints::RowJacobian& J = side(w.start, w.touches[t]);
+    const int first = w.offset[w.touches[t].joint];
+    for (Eigen::Index r = 0; r < J.rows(); ++r)
+      w.target[first + r] += J.row(r).dot(w.minvJt[t].col(r));
   }
+  const double maxDiagonal = n > 0 ? w.target.maxCoeff() : 0.0;
   if (maxDiagonal <= 0.0) return;  // no joint touches a dynamic body
   const double compliance = 1e-10 * maxDiagonal;
 
@@ -308,19 +316,16 @@ void correctPredictedState(geometry::BodyState& state,
     w.predictedPoses.resize(w.bodies.size());
     for (std::size_t k = 0; k < w.bodies.size(); ++k)
       w.predictedPoses[k] = predictPose(state, w.bodies[k], h);
-    const auto poseAt = [&](const geometry::BodyId& id) {
-      if (id.valid()) {
-        const auto it = std::lower_bound(w.bodies.begin(), w.bodies.end(), id.index);
-        if (it != w.bodies.end() && *it == id.index)
-          return w.predictedPoses[static_cast<std::size_t>(it - w.bodies.begin())];
-      }
-      return predictedPoseOf(state, id, h);
+    const auto poseAt = [&](int j, const geometry::BodyId& id, bool sideB) {
+      const int k = w.sideBody[2 * j + (sideB ? 1 : 0)];
+      return k >= 0 ? w.predictedPoses[k] : predictedPoseOf(state, id, h);
     };
     double largest = 0.0;
     w.predicted.resize(jointCount);  // no allocation once both buffers (see the Newton pass) grew
     for (int j = 0; j < jointCount; ++j) {
       const joints::JointDef& def = *joints[j];
-      joints::evaluateJoint(def, poseAt(def.bodyA), poseAt(def.bodyB), w.predicted[j]);
+      joints::evaluateJoint(def, poseAt(j, def.bodyA, false), poseAt(j, def.bodyB, true),
+                            w.predicted[j]);
       drift.segment(w.offset[j], w.predicted[j].rows()) = w.predicted[j].error;
       largest = std::max(largest, w.predicted[j].error.cwiseAbs().maxCoeff());
     }
@@ -371,7 +376,7 @@ void correctPredictedState(geometry::BodyState& state,
     // and the normal equations B^T B would square its condition and cost a product per block.
     // A step that does not halve |C| means SHAKE has no root near (B turns singular where a chain
     // passes a straight configuration): the remaining passes project (below).
-    assemble(state, w.predicted, nullptr, compliance, w);  // M^-1 J^T of the start, as above
+    assemble(w.predicted, compliance, w);  // M^-1 J^T of the start, as above
     w.target = -drift / h;
     if (!factorizeNewton(w)) break;
     if (w.byBlocks)
@@ -405,7 +410,8 @@ void correctPredictedState(geometry::BodyState& state,
   for (int pass = result.iterations; pass < settings.iterations && largest > settings.tolerance;
        ++pass) {
     w.along = w.predicted;
-    assemble(state, w.along, &w.along, compliance, w);
+    inverseMassTimesRows(state, w.along, w);
+    assemble(w.along, compliance, w);
     w.target = -drift / h;
     if (!factorizeSymmetric(w)) break;
     if (w.byBlocks)

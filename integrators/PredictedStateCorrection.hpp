@@ -67,6 +67,7 @@ struct PredictedStateWorkspace {
   std::vector<int> offset;
   std::vector<Touch> touches;
   std::vector<std::uint32_t> bodies;       // the touched bodies, ascending
+  std::vector<int> sideBody;               // per joint side: its index in `bodies`, or -1
   std::vector<std::pair<int, int>> pairs;  // (a, b): joints sharing a body (and every (a, a))
   std::vector<int> pairValues;             // start of block (a, b) in `b`, rows(a) x rows(b)
   std::vector<int> diagonalPair;           // (a, a) per joint
