@@ -210,6 +210,11 @@ struct FclScene::Impl {
 
 FclScene::FclScene(double aabbMargin) : impl_(std::make_unique<Impl>()) {
   impl_->margin = std::max(0.0, aabbMargin);
+  // FCL re-balances 10 leaves on every update with a moved leaf (DynamicAABBTreeCollisionManager::
+  // setup); on a swinging 10-link chain that was about 30 % of the broad phase. Without it the
+  // tree is still rebuilt top-down once it is max_tree_nonbalanced_level (10) levels deeper than
+  // balanced, and the pairs found are the same (they are sorted).
+  impl_->manager.tree_incremental_balance_pass = 0;
 }
 FclScene::~FclScene() = default;
 FclScene::FclScene(FclScene&&) noexcept = default;
