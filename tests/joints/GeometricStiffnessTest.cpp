@@ -1,9 +1,14 @@
 // joints/GeometricStiffness: K = [f]x [r]x against finite differences of the torque r x f as the
-// body turns, and the stabilizing inertia against the explicit stability limit omega h = 2.
+// body turns, and the stabilizing inertia against the explicit stability limit omega h = 2 (and its
+// shortcut against the eigen-decomposition).
 #include <gtest/gtest.h>
 #include <coulomb/joints/GeometricStiffness.hpp>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+
+#include <cmath>
+#include <random>
 
 using namespace coulomb;
 
@@ -45,4 +50,44 @@ TEST(GeometricStiffness, InertiaIsRaisedOnlyBeyondTheExplicitLimit) {
   EXPECT_NEAR(raised(1, 1), 0.5 * h * h * 9.81, 1e-15);
   EXPECT_NEAR(raised(2, 2), 0.5 * h * h * 9.81, 1e-15);
   EXPECT_NEAR(h * h * 9.81 / raised(1, 1), 2.0, 1e-12);  // (omega h)^2
+}
+
+TEST(GeometricStiffness, ShortcutAgreesWithTheEigenDecomposition) {
+  // stabilizingInertia skips its eigen-decomposition when 16 I^2 - h^4 S^2 is positive definite;
+  // against the rule applied to every eigenpair, on random inertias and loads around the limit.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double h = 0.01;
+  int unchanged = 0, raised = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Eigen::Matrix3d rotation =
+        Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized())
+            .toRotationMatrix();
+    const Eigen::Vector3d moments(1e-5 * (1.0 + 9.0 * std::abs(u(rng))),
+                                  1e-4 * (1.0 + std::abs(u(rng))), 1e-4 * (1.0 + std::abs(u(rng))));
+    const Eigen::Matrix3d inertia = rotation * moments.asDiagonal() * rotation.transpose();
+    Eigen::Matrix3d k = Eigen::Matrix3d::Zero();
+    const double load = 4.0 * 1e-4 / (h * h) * 40.0 * std::abs(u(rng));  // |k| to ~8x the limit
+    for (int joint = 0; joint < 2; ++joint)
+      k += joints::rotationalGeometricStiffness(load * Eigen::Vector3d(u(rng), u(rng), u(rng)),
+                                                0.05 * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    // The rule on every eigenpair (joints/GeometricStiffness.hpp).
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (k + k.transpose()));
+    Eigen::Matrix3d expected = inertia;
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d v = eigen.eigenvectors().col(j);
+      const double stiff = h * h * std::abs(eigen.eigenvalues()(j)), current = v.dot(inertia * v);
+      if (stiff > 4.0 * current) expected += (0.5 * stiff - current) * v * v.transpose();
+    }
+    const Eigen::Matrix3d got = joints::stabilizingInertia(inertia, k, h);
+    if (expected == inertia) {
+      ++unchanged;
+      EXPECT_EQ(got, inertia) << "trial " << trial;
+    } else {
+      ++raised;
+      EXPECT_LT((got - expected).norm(), 1e-12 * expected.norm()) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(unchanged, 200);  // both outcomes are exercised
+  EXPECT_GT(raised, 200);
 }
