@@ -213,10 +213,8 @@ void JointStage::correctDrift(geometry::BodyState& state, std::span<const std::i
   const auto started = std::chrono::steady_clock::now();
   integrators::PredictedStateResult& result = correctionResult_;
   integrators::correctPredictedState(state, defs, settings, h, correction_, result);
-  for (std::size_t j = 0; j < slots.size(); ++j) {  // along the rows the correction applied
-    const joints::ConstraintEval& start = correction_.start[j];  // (the poses have not moved)
-    records_[slots[j]].impulseOnB += start.jacobianB.transpose() * result.impulses[j];
-  }
+  for (std::size_t j = 0; j < slots.size(); ++j)
+    records_[slots[j]].impulseOnB += result.impulsesOnB[j];
   report.correctionIterations = result.iterations;
   report.correctionError = result.finalError;
   report.correctionConverged = result.converged;

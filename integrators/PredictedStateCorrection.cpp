@@ -267,6 +267,7 @@ void correctPredictedState(geometry::BodyState& state,
   result.converged = false;
   const auto jointCount = static_cast<int>(joints.size());
   result.impulses.resize(jointCount);
+  result.impulsesOnB.resize(jointCount);
   if (jointCount == 0) return;
 
   // Jacobians at the start of the step (fixed through the iteration, as in Bender's method).
@@ -280,6 +281,7 @@ void correctPredictedState(geometry::BodyState& state,
     joints::evaluateJoint(def, pose(def.bodyA), pose(def.bodyB), w.start[j]);
     w.offset[j + 1] = w.offset[j] + w.start[j].rows();
     result.impulses[j] = joints::RowVector::Zero(w.start[j].rows());
+    result.impulsesOnB[j].setZero();
   }
   const int n = w.offset[jointCount];
   {
@@ -442,8 +444,10 @@ void correctPredictedState(geometry::BodyState& state,
   }
   result.finalError = largest;
   result.converged = largest <= settings.tolerance;
-  for (int j = 0; j < jointCount; ++j)
+  for (int j = 0; j < jointCount; ++j) {
     result.impulses[j] = total.segment(w.offset[j], w.start[j].rows());
+    result.impulsesOnB[j] = w.start[j].jacobianB.transpose() * result.impulses[j];
+  }
 }
 
 }  // namespace coulomb::integrators

@@ -44,6 +44,9 @@ struct PredictedStateResult {
   double finalError = 0.0;    // [m or rad] largest predicted |C| after the last one
   bool converged = false;     // finalError <= tolerance
   std::vector<joints::RowVector> impulses;  // per joint: accumulated p on its equality rows [N s]
+  // Per joint: J_B^T p, the impulse on body B along the start-of-step rows the correction acted on
+  // (linear [N s], then angular [N m s], world axes).
+  std::vector<Eigen::Matrix<double, 6, 1>> impulsesOnB;
 };
 
 /// The pose body i reaches when integratePositions(state, h) runs with its current velocities

@@ -117,7 +117,7 @@ void BodySpaceDelassus::bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd
 void BodySpaceDelassus::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   Eigen::VectorXd& dv = productVelocities_;
   bodyVelocities(x, dv);
-  for (int b = 0; b < blockCount(); ++b) addBlockVelocity(b, dv, y.data() + offset_[b]);
+  addRowVelocities(dv, y.data());
 }
 
 void BodySpaceDelassus::diagonalBlock(int b, double* out) const {

@@ -58,6 +58,10 @@ class BodySpaceDelassus {
       for (int a = 0; a < k; ++a) u[a] += dot6(J(row + a, side), v);
     }
   }
+  /// u += J dv for every row (u: size() values), block by block as addBlockVelocity.
+  void addRowVelocities(const Eigen::VectorXd& dv, double* u) const {
+    for (int b = 0; b < blockCount(); ++b) addBlockVelocity(b, dv, u + offset_[b]);
+  }
   /// dv += G_b dx for block b (dx: k values). Inline: the Gauss-Seidel inner loop.
   void addBlockImpulse(int b, const double* dx, Eigen::VectorXd& dv) const {
     const int k = size_[b], row = offset_[b];

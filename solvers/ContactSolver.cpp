@@ -151,8 +151,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
       return stepQ;
     Eigen::VectorXd& arrivedQ = work.stepQ;
     arrivedQ.setZero(n);
-    for (int b = 0; b < factors->blockCount(); ++b)
-      factors->addBlockVelocity(b, problem.arrival, arrivedQ.data() + factors->blockOffset(b));
+    factors->addRowVelocities(problem.arrival, arrivedQ.data());
     if (plainNorm(arrivedQ) > options.tolerance * (1.0 + prepared.qNorm)) return stepQ;
     arrivedQ = problem.q - arrivedQ;
     return stepQ = &arrivedQ;

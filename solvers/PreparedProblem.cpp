@@ -124,7 +124,7 @@ double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u,
     dv.setZero(6 * bodySpace->bodyCount());
   } else {  // multiplyAdd's two passes, dv kept
     bodySpace->bodyVelocities(r, dv);
-    for (int b = 0; b < blockCount(); ++b) bodySpace->addBlockVelocity(b, dv, u.data() + offset[b]);
+    bodySpace->addRowVelocities(dv, u.data());  // the same partition as `offset`
   }
   return residualFromVelocity(r, u);
 }

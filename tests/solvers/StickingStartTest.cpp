@@ -238,8 +238,7 @@ namespace {
 Eigen::VectorXd arrivalRowVelocities(const ContactProblem& p) {
   const BodySpaceDelassus& factors = *p.W.bodySpaceOperator();
   Eigen::VectorXd d = Eigen::VectorXd::Zero(p.size());
-  for (int b = 0; b < factors.blockCount(); ++b)
-    factors.addBlockVelocity(b, p.arrival, d.data() + factors.blockOffset(b));
+  factors.addRowVelocities(p.arrival, d.data());
   return d;
 }
 
