@@ -1,6 +1,6 @@
 #include <coulomb/solvers/direct/BlockLdlt.hpp>
 
-#include <coulomb/solvers/direct/SymbolicLdlt.hpp>
+#include <coulomb/solvers/direct/BlockTriangularSolve.hpp>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -34,8 +34,6 @@ bool BlockLdltOf<N>::factorize(const std::vector<Block>& diagonal,
   // N x N blocks): Y_i = D_i L_ki^T, Y_r -= L_ri Y_i, L_ki = (D_i^-1 Y_i)^T, D_k -= L_ki Y_i.
   for (int k = 0; k < n; ++k) {
     Block d = diagonal[s.inverse[k]];
-    int top = n;
-    flag_[k] = k;
     lnz_[k] = 0;
     for (int e = s.ep[k]; e < s.ep[k + 1]; ++e) {
       const BlockElimination::Entry& entry = s.entries[e];
@@ -43,14 +41,8 @@ bool BlockLdltOf<N>::factorize(const std::vector<Block>& diagonal,
         y_[entry.i] += coupling[entry.pair].transpose();
       else
         y_[entry.i] += coupling[entry.pair];
-      int length = 0;
-      for (int i = entry.i; flag_[i] != k; i = s.parent[i]) {
-        pattern_[length++] = i;
-        flag_[i] = k;
-      }
-      while (length > 0) pattern_[--top] = pattern_[--length];
     }
-    for (; top < n; ++top) {
+    for (int top = s.reach(k, flag_, pattern_); top < n; ++top) {
       const int i = pattern_[top];
       const Block yi = y_[i];
       y_[i].setZero();
@@ -81,23 +73,8 @@ bool BlockLdltOf<N>::factorize(const std::vector<Block>& diagonal,
 
 template <int N>
 void BlockLdltOf<N>::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  const BlockElimination& s = symbolic_;
-  const int n = s.n;
-  using Segment = Eigen::Matrix<double, N, 1>;
-  auto w = [&](int j) { return work_.segment<N>(N * static_cast<Eigen::Index>(j)); };
-  for (int i = 0; i < n; ++i) w(s.perm[i]) = b.segment<N>(N * static_cast<Eigen::Index>(i));
-  for (int j = 0; j < n; ++j) {  // L y = P b
-    const Segment wj = w(j);
-    for (int p = s.lp[j]; p < s.lp[j + 1]; ++p) w(li_[p]).noalias() -= lx_[p] * wj;
-  }
-  for (int j = 0; j < n; ++j) w(j) = (dInverse_[j] * w(j)).eval();
-  for (int j = n - 1; j >= 0; --j) {  // L^T z = D^-1 y
-    Segment wj = w(j);
-    for (int p = s.lp[j]; p < s.lp[j + 1]; ++p) wj.noalias() -= lx_[p].transpose() * w(li_[p]);
-    w(j) = wj;
-  }
-  x.resize(N * static_cast<Eigen::Index>(n));
-  for (int i = 0; i < n; ++i) x.segment<N>(N * static_cast<Eigen::Index>(i)) = w(s.perm[i]);
+  detail::solveByBlocks<N>(
+      symbolic_, li_, lx_, [&](int p) { return lx_[p].transpose(); }, dInverse_, work_, b, x);
 }
 
 template class BlockLdltOf<3>;

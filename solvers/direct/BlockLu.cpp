@@ -1,5 +1,7 @@
 #include <coulomb/solvers/direct/BlockLu.hpp>
 
+#include <coulomb/solvers/direct/BlockTriangularSolve.hpp>
+
 #include <Eigen/LU>
 
 #include <stdexcept>
@@ -35,8 +37,6 @@ bool BlockLuOf<N>::factorize(const std::vector<Block>& diagonal, const std::vect
   // Both solves visit the same blocks: the reach of column k in the elimination tree.
   for (int k = 0; k < n; ++k) {
     Block d = diagonal[s.inverse[k]];
-    int top = n;
-    flag_[k] = k;
     lnz_[k] = 0;
     for (int e = s.ep[k]; e < s.ep[k + 1]; ++e) {
       const BlockElimination::Entry& entry = s.entries[e];
@@ -45,14 +45,8 @@ bool BlockLuOf<N>::factorize(const std::vector<Block>& diagonal, const std::vect
       const Block& lower = entry.transposed ? coupling[entry.pair] : mirrored[entry.pair];
       y_[entry.i] += upper;
       z_[entry.i] += lower.transpose();
-      int length = 0;
-      for (int i = entry.i; flag_[i] != k; i = s.parent[i]) {
-        pattern_[length++] = i;
-        flag_[i] = k;
-      }
-      while (length > 0) pattern_[--top] = pattern_[--length];
     }
-    for (; top < n; ++top) {
+    for (int top = s.reach(k, flag_, pattern_); top < n; ++top) {
       const int i = pattern_[top];
       const Block yi = y_[i], zi = z_[i];
       y_[i].setZero();
@@ -79,23 +73,8 @@ bool BlockLuOf<N>::factorize(const std::vector<Block>& diagonal, const std::vect
 
 template <int N>
 void BlockLuOf<N>::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  const BlockElimination& s = symbolic_;
-  const int n = s.n;
-  using Segment = Eigen::Matrix<double, N, 1>;
-  auto w = [&](int j) { return work_.segment<N>(N * static_cast<Eigen::Index>(j)); };
-  for (int i = 0; i < n; ++i) w(s.perm[i]) = b.segment<N>(N * static_cast<Eigen::Index>(i));
-  for (int j = 0; j < n; ++j) {  // L y = P b
-    const Segment wj = w(j);
-    for (int p = s.lp[j]; p < s.lp[j + 1]; ++p) w(li_[p]).noalias() -= lx_[p] * wj;
-  }
-  for (int j = 0; j < n; ++j) w(j) = (dInverse_[j] * w(j)).eval();
-  for (int j = n - 1; j >= 0; --j) {  // U z = D^-1 y: row j of U is stored with column j of L
-    Segment wj = w(j);
-    for (int p = s.lp[j]; p < s.lp[j + 1]; ++p) wj.noalias() -= ux_[p] * w(li_[p]);
-    w(j) = wj;
-  }
-  x.resize(N * static_cast<Eigen::Index>(n));
-  for (int i = 0; i < n; ++i) x.segment<N>(N * static_cast<Eigen::Index>(i)) = w(s.perm[i]);
+  detail::solveByBlocks<N>(
+      symbolic_, li_, lx_, [&](int p) -> const Block& { return ux_[p]; }, dInverse_, work_, b, x);
 }
 
 template class BlockLuOf<1>;

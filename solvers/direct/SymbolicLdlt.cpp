@@ -68,4 +68,18 @@ void BlockElimination::analyze(int blocks, const std::vector<std::pair<int, int>
   for (int k = 0; k < n; ++k) lp[k + 1] = lp[k] + counts[k];
 }
 
+int BlockElimination::reach(int k, std::vector<int>& flag, std::vector<int>& pattern) const {
+  int top = n;
+  flag[k] = k;
+  for (int e = ep[k]; e < ep[k + 1]; ++e) {
+    int length = 0;
+    for (int i = entries[e].i; flag[i] != k; i = parent[i]) {
+      pattern[length++] = i;
+      flag[i] = k;
+    }
+    while (length > 0) pattern[--top] = pattern[--length];
+  }
+  return top;
+}
+
 }  // namespace coulomb::solvers

@@ -37,6 +37,10 @@ struct BlockElimination {
 
   /// Throws std::invalid_argument on a negative count, an index out of range or row == col.
   void analyze(int blocks, const std::vector<std::pair<int, int>>& coupled);
+  /// The columns i < k of row k of L that can be nonzero, in an order that eliminates each after
+  /// those it depends on: pattern[top .. n) with top returned (Davis's ereach). `flag` and
+  /// `pattern` have n entries; flag[k] is set to k.
+  int reach(int k, std::vector<int>& flag, std::vector<int>& pattern) const;
   [[nodiscard]] bool analyzed(int blocks, const std::vector<std::pair<int, int>>& coupled) const {
     return blocks == n && coupled == pairs;
   }
