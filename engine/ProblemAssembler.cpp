@@ -137,6 +137,71 @@ class SparseRowsBuilder {
   std::vector<double>& values_;
 };
 
+// W of an island of contact blocks only (the common small island): its 3 x 3 blocks straight
+// into block-CSR, each pair (k, j) computed once and mirrored (W_jk = W_kj^T, and the diagonal
+// blocks' upper triangles, so W is exactly symmetric). The block pattern is symmetric: j is in row
+// k when the two share a dynamic body.
+void assembleContactBlocks(const joints::RowSet& rows, AssemblyScratch& scratch,
+                           solvers::BlockSparseMatrix& out) {
+  using J3 = Eigen::Matrix<double, 3, 6, Eigen::RowMajor>;
+  using MJ3 = Eigen::Matrix<double, 6, 3>;
+  using Block3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  const auto blockCount = static_cast<int>(rows.blocks.size());
+  const std::vector<AssemblyTouch>& touches = scratch.touches;
+  const std::vector<int>&groupOfSide = scratch.groupOfSide, &groupStart = scratch.groupStart;
+  std::vector<int>&rowStart = scratch.rowStart, &columns = scratch.blockColumns;
+  // The pattern: row k's columns are the blocks on k's bodies, ascending, once each.
+  rowStart.assign(1, 0);
+  columns.clear();
+  for (int k = 0; k < blockCount; ++k) {
+    const auto first = static_cast<std::ptrdiff_t>(columns.size());
+    for (int side = 0; side < 2; ++side)
+      if (const int g = groupOfSide[2 * k + side]; g >= 0)
+        for (int t = groupStart[g]; t < groupStart[g + 1]; ++t) columns.push_back(touches[t].block);
+    std::sort(columns.begin() + first, columns.end());
+    columns.erase(std::unique(columns.begin() + first, columns.end()), columns.end());
+    rowStart.push_back(static_cast<int>(columns.size()));
+  }
+  std::vector<double>& values = scratch.values;
+  values.resize(9 * columns.size());
+  // Entries below the diagonal are filled from above: row j's columns k < j arrive in increasing
+  // k, so a cursor per row finds each mirror position.
+  std::vector<int>& mirror = scratch.next;
+  mirror.assign(rowStart.begin(), rowStart.end() - 1);
+  for (int k = 0; k < blockCount; ++k) {
+    const joints::RowBlock& bk = rows.blocks[k];
+    // k's body groups in increasing body index (the summation order of the general path).
+    int groups[2] = {groupOfSide[2 * k], groupOfSide[2 * k + 1]};
+    const joints::RowJacobian* sides[2] = {&bk.jacobianA, &bk.jacobianB};
+    if (groups[0] >= 0 && groups[1] >= 0 && groups[1] < groups[0]) {
+      std::swap(groups[0], groups[1]);
+      std::swap(sides[0], sides[1]);
+    }
+    for (int e = rowStart[k]; e < rowStart[k + 1]; ++e) {
+      const int j = columns[e];
+      if (j < k) continue;  // mirrored from row j
+      Block3 value = Block3::Zero();
+      for (int g = 0; g < 2; ++g) {
+        if (groups[g] < 0) continue;
+        const Eigen::Map<const J3> jk(sides[g]->data());
+        for (int side = 0; side < 2; ++side)
+          if (groupOfSide[2 * j + side] == groups[g])
+            value.noalias() += jk * Eigen::Map<const MJ3>(scratch.minvJt[2 * j + side].data());
+      }
+      if (j == k) {  // the upper triangle, mirrored
+        value(1, 0) = value(0, 1);
+        value(2, 0) = value(0, 2);
+        value(2, 1) = value(1, 2);
+      }
+      Eigen::Map<Block3>(values.data() + 9 * e) = value;
+      if (j > k) Eigen::Map<Block3>(values.data() + 9 * mirror[j]++) = value.transpose();
+    }
+  }
+  std::vector<int>& sizes = scratch.csrBlockSizes;
+  sizes.assign(blockCount, 3);
+  out.assignBlockCsr(sizes, rowStart, columns, values);
+}
+
 // `kept` when no operator shares it any more (refilled in place), else a fresh one.
 template <class T>
 T& reusable(std::shared_ptr<T>& kept) {
@@ -297,6 +362,15 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
     return;
   }
   out.problem.arrival.resize(0);  // used with a body-space W only
+
+  bool contactsOnly = treeBlocks.empty();
+  for (const joints::RowBlock& b : rows.blocks)
+    contactsOnly = contactsOnly && b.kind == joints::RowKind::Contact3D && b.rows() == 3;
+  if (contactsOnly) {
+    assembleContactBlocks(rows, scratch, reusable(scratch.sparse));
+    out.problem.W = solvers::DelassusOperator::blockSparse(scratch.sparse);
+    return;
+  }
 
   // W_kj = sum over the bodies b shared by blocks k and j (in increasing body index) of
   // J_k,b M_b^-1 J_j,b^T, plus the trees' part; built row block by row block, columns ascending.

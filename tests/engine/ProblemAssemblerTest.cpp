@@ -98,6 +98,36 @@ TEST(ProblemAssembler, SparseAndFactoredDelassusMatchTheGlobalProduct) {
   EXPECT_EQ(small.degreesOfFreedom, 12);  // the static ground carries no unknowns
 }
 
+TEST(ProblemAssembler, ContactIslandsGetAnExactlySymmetricW) {
+  // Contact blocks only (the 3 x 3 path): two contacts between the same two boxes, one on the
+  // ground, and one between the ground and the top box (no shared body with the first).
+  const auto state = threeBodies();
+  joints::RowSet rows;
+  auto add = [&](std::uint32_t a, std::uint32_t b, Eigen::Vector3d point, double mu) {
+    joints::ContactPointFrame c;
+    c.bodyA = BodyId{a, 0};
+    c.bodyB = BodyId{b, 0};
+    c.point = point;
+    c.centreA = state.poses[a].position;
+    c.centreB = state.poses[b].position;
+    c.friction = mu;
+    rows.blocks.push_back(joints::makeContactRows(c));
+  };
+  add(0, 1, Eigen::Vector3d(0.4, 0.3, 0.0), 0.5);
+  add(1, 2, Eigen::Vector3d(0.2, -0.1, 1.0), 0.8);
+  add(1, 2, Eigen::Vector3d(-0.3, 0.2, 1.0), 0.8);
+  add(0, 2, Eigen::Vector3d(1.0, 1.0, 0.0), 0.3);
+  const auto assembled = engine::ProblemAssembler().assemble(rows, state);
+  const solvers::BlockSparseMatrix* W = assembled.problem.W.blockSparseMatrix();
+  ASSERT_NE(W, nullptr);
+  const Eigen::MatrixXd dense = W->toDense();
+  EXPECT_LT((dense - bruteForceW(rows, state)).norm(), 1e-13);
+  EXPECT_TRUE((dense.array() == dense.transpose().array()).all());  // bit for bit
+  // Blocks (0, 3) share no dynamic body (the ground carries none): not stored.
+  EXPECT_EQ(W->nonZeroBlocks(), 16 - 2);
+  EXPECT_FALSE(assembled.problem.validate().has_value());
+}
+
 TEST(ProblemAssembler, FreeVelocityIsJTimesTheTwists) {
   const auto state = threeBodies();
   const auto rows = stackRows(state);
