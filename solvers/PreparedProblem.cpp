@@ -16,7 +16,7 @@ PreparedProblem PreparedProblem::from(const ContactProblem& problem, bool keepBo
 
 void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) {
   PreparedProblem& p = *this;
-  p.start.known = false;  // its vectors keep their storage
+  p.start.known = p.end.known = false;  // their vectors keep their storage
   p.bodySpace.reset();
   p.diagonalBlocks = nullptr;
   p.scale.resize(0);
@@ -29,6 +29,10 @@ void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) 
     p.offset[b + 1] = p.offset[b] + p.sizes[b];
   }
   p.q = problem.q;
+  // Sized with the problem: a steady step allocates nothing when one is first recorded.
+  p.start.u.resize(p.q.size());
+  p.end.r.resize(p.q.size());
+  p.end.u.resize(p.q.size());
   bool anisotropic = false;
   for (const ConstraintBlock& b : p.blocks) anisotropic |= b.isContact() && b.anisotropic;
   if (keepBodySpace && !anisotropic && problem.W.bodySpaceOperator()) {
@@ -100,9 +104,11 @@ void PreparedProblem::velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) con
     W.multiplyAdd(r, u);
 }
 
-double PreparedProblem::residualFromVelocity(const Eigen::VectorXd& r,
-                                             const Eigen::VectorXd& u) const {
-  return solvers::residualFromVelocity(blocks, r, u) / (1.0 + qNorm);
+double PreparedProblem::residualFromVelocity(const Eigen::VectorXd& r, const Eigen::VectorXd& u,
+                                             double* absolute) const {
+  const double value = solvers::residualFromVelocity(blocks, r, u);
+  if (absolute != nullptr) *absolute = value;
+  return value / (1.0 + qNorm);
 }
 
 double PreparedProblem::sweepResidualFromVelocity(const Eigen::VectorXd& r,
@@ -127,6 +133,18 @@ double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u,
     bodySpace->addRowVelocities(dv, u.data());  // the same partition as `offset`
   }
   return residualFromVelocity(r, u);
+}
+
+bool PreparedProblem::startEvaluatedAs(const Eigen::VectorXd& r) const {
+  return startIs(r) && start.u.size() == r.size() && start.inBodySpace == (bodySpace != nullptr);
+}
+
+void PreparedProblem::recordEnd(const Eigen::VectorXd& r, const Eigen::VectorXd& u) const {
+  end.known = true;
+  end.r = r;
+  end.u = u;
+  end.residual = residualFromVelocity(r, u, &end.absolute);
+  end.inBodySpace = bodySpace != nullptr;
 }
 
 bool PreparedProblem::startIs(const Eigen::VectorXd& r) const {

@@ -36,26 +36,33 @@ struct PreparedProblem {
   double qNorm = 0.0;                   // plainNorm(q)
   double maxDiagonal = 0.0;             // max_i W_ii
 
-  // The start ContactSolver::solve hands to the solver, with what it already computed for it: its
-  // residual (residual() below) and, in body space, dv = M^-1 J^T r. A solver starting from this
-  // very r (startIs) reads them instead of computing them a second time.
-  // A copy of a PreparedProblem does not inherit it: composite solvers copy the problem to change
+  // A residual already evaluated (residual() below) with what it computed: u = W r + q, in body
+  // space dv = M^-1 J^T r, the relative and absolute residuals, and whether W was the body-space
+  // factors then (formExplicitW changes the rounding of W r). Reading it instead of evaluating
+  // again gives the same bits.
+  // A copy of a PreparedProblem does not inherit one: composite solvers copy the problem to change
   // its W or q (ac_newton's proximal subproblems), for which these values would be wrong.
-  struct KnownStart {
-    KnownStart() = default;
-    KnownStart(const KnownStart& /*other*/) {}
-    KnownStart(KnownStart&&) = default;
-    KnownStart& operator=(const KnownStart& other) {
-      if (this != &other) *this = KnownStart();
+  struct KnownEvaluation {
+    KnownEvaluation() = default;
+    KnownEvaluation(const KnownEvaluation& /*other*/) {}
+    KnownEvaluation(KnownEvaluation&&) = default;
+    KnownEvaluation& operator=(const KnownEvaluation& other) {
+      if (this != &other) *this = KnownEvaluation();
       return *this;
     }
-    KnownStart& operator=(KnownStart&&) = default;
-    ~KnownStart() = default;
+    KnownEvaluation& operator=(KnownEvaluation&&) = default;
+    ~KnownEvaluation() = default;
     bool known = false;
-    Eigen::VectorXd r, dv;  // dv: body space only
-    double residual = 0.0;
+    Eigen::VectorXd r, u, dv;  // dv: body space only
+    double residual = 0.0, absolute = 0.0;
+    bool inBodySpace = false;
   };
-  KnownStart start;
+  // The start ContactSolver::solve hands to the solver: a solver starting from this very r
+  // (startIs) reads its residual, u and dv instead of computing them a second time.
+  KnownEvaluation start;
+  // The solver's answer, when its last act was evaluating it (recordEnd): ContactSolver reads the
+  // common residual from it. Mutable: solvers see the problem as const.
+  mutable KnownEvaluation end;
 
   static PreparedProblem from(const ContactProblem& problem, bool keepBodySpace = false);
   // The same into this object, reusing its storage (ContactSolver's workspace).
@@ -79,8 +86,13 @@ struct PreparedProblem {
   double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u, Eigen::VectorXd& dv) const;
   // True when `start` is known and r is bitwise the same vector.
   [[nodiscard]] bool startIs(const Eigen::VectorXd& r) const;
-  [[nodiscard]] double residualFromVelocity(const Eigen::VectorXd& r,
-                                            const Eigen::VectorXd& u) const;
+  // With `absolute`, also the unscaled ||F(r)|| (the common residual's absolute value).
+  [[nodiscard]] double residualFromVelocity(const Eigen::VectorXd& r, const Eigen::VectorXd& u,
+                                            double* absolute = nullptr) const;
+  // True when `start` is known for r and was evaluated on W as it is now (u reusable).
+  [[nodiscard]] bool startEvaluatedAs(const Eigen::VectorXd& r) const;
+  // Records r (the solver's answer) with u = W r + q as `end`.
+  void recordEnd(const Eigen::VectorXd& r, const Eigen::VectorXd& u) const;
   // The same with sweepNorm (round-off apart): Gauss-Seidel's convergence checks.
   [[nodiscard]] double sweepResidualFromVelocity(const Eigen::VectorXd& r,
                                                  const Eigen::VectorXd& u) const;

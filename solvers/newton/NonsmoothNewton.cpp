@@ -137,9 +137,13 @@ class NewtonSystem {
     // rhs = -phi_R - (J_sigma d_E)_R
     Eigen::VectorXd& wd = work_.solveWd;
     Eigen::VectorXd& jd = work_.solveJd;
-    wd = sigma * d;
-    p_.W.multiplyAdd(d, wd);
-    applyAB(wd, d, jd);
+    if (m == n) {  // no row eliminated: d = 0, so J_sigma d = 0 (no product with W)
+      jd.setZero(n);
+    } else {
+      wd = sigma * d;
+      p_.W.multiplyAdd(d, wd);
+      applyAB(wd, d, jd);
+    }
     Eigen::VectorXd& rhs = work_.rhs;  // kept at the problem's size: |R| varies below it
     if (rhs.size() != n) rhs.resize(n);
     Eigen::VectorXd& x = work_.x;
@@ -178,7 +182,13 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
   NewtonSystem system(p, function, s, work);
   Eigen::VectorXd &u = work.u, &phi = work.phi, &d = work.d, &wd = work.wd, &jd = work.jd;
   Eigen::VectorXd &trialR = work.trialR, &trialU = work.trialU, &trialPhi = work.trialPhi;
-  double e = p.residual(r, u);
+  double e = 0.0;
+  if (p.startEvaluatedAs(r)) {  // ContactSolver's start: its residual and u are known
+    e = p.start.residual;
+    u = p.start.u;
+  } else {
+    e = p.residual(r, u);
+  }
   Eigen::VectorXd& best = work.best;
   best = r;
   double bestE = e;
@@ -324,7 +334,10 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
     }
   }
   report.iterations += k;
-  if (report.status != SolverStatus::Converged) r = best;
+  if (report.status == SolverStatus::Converged)
+    p.recordEnd(r, u);  // u = W r + q of the answer (measured after the last update)
+  else
+    r = best;
   if (steepest > 0) {
     char msg[48];
     std::snprintf(msg, sizeof msg, "%d steepest-descent steps", steepest);

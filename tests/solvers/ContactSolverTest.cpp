@@ -182,3 +182,36 @@ TEST(ContactSolver, AnAnswerWorseThanItsStartIsNotReturnedWhenAsked) {
   EXPECT_LE(std::hypot(out.impulses[1], out.impulses[2]), 0.5 * out.impulses[0] + 1e-12);
   EXPECT_LT(out.report.residual, 1.0);
 }
+
+// The report's residual is the common residual of the returned impulses, bit for bit, and the
+// returned velocities are W r + q, whether ContactSolver computes it after the solve or reads it
+// from the solver's last evaluation (Newton's answer, an accepted warm start: PreparedProblem::
+// end), on block-sparse W (the World's small islands) as on the fixtures' own storage.
+TEST(ContactSolver, TheReportedResidualIsTheCommonResidualOfTheAnswer) {
+  const SolverRegistry registry = SolverRegistry::builtIn();
+  for (const char* name : fixtures::kFixtures) {
+    ContactProblem original = fixtures::loadFixture(name);
+    ContactProblem sparse = original;
+    sparse.W = DelassusOperator::blockSparse(original.W.toBlockSparse(original.blockSizes()));
+    for (ContactProblem* p : {&original, &sparse}) {
+      for (const char* solver : {"ac_newton", "fb_newton", "bgs", "pgs"}) {
+        SolverOptions o;
+        o.tolerance = 1e-8;
+        o.maxIterations = 300;
+        const std::unique_ptr<ContactSolver> s = registry.create(solver);
+        const SolveOutcome cold = s->solve(*p, o);
+        // Warm-started at its own answer: the start is the answer (no iteration when converged).
+        ContactProblem warm = *p;
+        warm.warmStart = cold.impulses;
+        const SolveOutcome again = s->solve(warm, o);
+        for (const SolveOutcome* out : {&cold, &again}) {
+          Eigen::VectorXd u;
+          const ResidualValue expected = commonResidual(*p, out->impulses, u);
+          EXPECT_EQ(out->report.residual, expected.relative) << name << " " << solver;
+          EXPECT_EQ(out->report.absoluteResidual, expected.absolute) << name << " " << solver;
+          EXPECT_EQ(out->velocities, u) << name << " " << solver;
+        }
+      }
+    }
+  }
+}
