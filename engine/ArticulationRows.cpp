@@ -194,6 +194,7 @@ void ArticulationStage::mapRows(const joints::RowSet& rows, const geometry::Body
                                 TreeRowMap& map) const {
   map.count = 0;
   map.treeIndex.assign(records_.size(), -1);
+  if (records_.empty()) return;  // no trees: no row can be on one
   // The map's tree of `articulation`, started (ABA at q now) when first touched.
   const auto treeOf = [&](std::int32_t articulation) -> TreeRowMap::Tree& {
     std::int32_t& index = map.treeIndex[static_cast<std::size_t>(articulation)];
