@@ -49,6 +49,10 @@ void transferPolicy(Ar& ar, solvers::SolvePolicy& p) {
     io(ar, p.options.stickingStart);
   else if constexpr (Ar::kLoading)
     p.options.stickingStart = false;  // the starts those files were written with
+  if (ar.version() >= 11)
+    io(ar, p.options.startSweep);
+  else if constexpr (Ar::kLoading)
+    p.options.startSweep = false;  // as those files were written
   solvers::ChooserSettings& c = p.chooser;
   io(ar, c.pileNu);
   io(ar, c.newtonMaxUnknowns);

@@ -38,8 +38,10 @@ namespace coulomb::engine::io {
 // generation (removable articulations); 7: WorldSettings::treeIntegrator (older files restore as
 // SemiImplicitEuler, the integrator they were written with); 8: SolverOptions::
 // sweepPartBlocks (older files restore with 0, the block order they were written with); 9:
-// SolverOptions::stickingStart (older files restore with it off, as they were written).
-inline constexpr std::uint32_t kSnapshotVersion = 10;
+// SolverOptions::stickingStart (older files restore with it off, as they were written); 10: the
+// predicted-state energy target (older files restore with none); 11: SolverOptions::startSweep
+// (older files restore with it off).
+inline constexpr std::uint32_t kSnapshotVersion = 11;
 /// Version 5 files still restore (their touching pairs are empty: pairs touching when the file
 /// was written get a Begin event in the first step after the restore).
 inline constexpr std::uint32_t kOldestReadableVersion = 5;

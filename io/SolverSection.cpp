@@ -81,7 +81,7 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
                   "restitution_threshold", "speculative_contacts", "speculative_margin",
                   "speculative_sweep", "penetration", "impact_law", "touching_tolerance",
                   "max_impact_sweeps", "elastic_turning", "promote_fallbacks", "sweep_part_blocks",
-                  "sticking_start"});
+                  "sticking_start", "start_sweep"});
   solvers::SolverOptions& options = settings.solve.options;
   if (node.has("name")) settings.solve.choice = parseSolverRequest(node.child("name"));
   if (node.has("tolerance")) options.tolerance = node.child("tolerance").positiveNumber();
@@ -98,6 +98,7 @@ void parseSolverSection(const JsonNode& node, WorldSettings& settings) {
   if (node.has("time_limit")) options.timeLimitSeconds = node.child("time_limit").positiveNumber();
   if (node.has("warm_start")) options.useWarmStart = node.child("warm_start").boolean();
   if (node.has("sticking_start")) options.stickingStart = node.child("sticking_start").boolean();
+  if (node.has("start_sweep")) options.startSweep = node.child("start_sweep").boolean();
   if (node.has("promote_fallbacks"))
     settings.solve.promotion.enabled = node.child("promote_fallbacks").boolean();
   ContactSettings& contact = settings.contact;

@@ -1,6 +1,7 @@
 #include <coulomb/solvers/ContactSolver.hpp>
 
 #include <coulomb/solvers/Residual.hpp>
+#include <coulomb/solvers/StartSweep.hpp>
 
 #include <cmath>
 #include <cstring>
@@ -134,6 +135,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // One note for both uses, short enough to need no heap: after sweeps (iterations > 0 with a
   // warm start) it was a restart.
   constexpr std::string_view kStickingNote = "sticking start";
+  constexpr std::string_view kStartSweepNote = "start sweep";
   // Up front also for a warm-started solver that does not sweep in body space (Newton): one of its
   // iterations assembles W and factors all 3 x contacts unknowns, the start only 6 x bodies ones,
   // so the start is the cheaper first try (a restart after a Newton iteration would come too late).
@@ -192,6 +194,24 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
       r = from;
     }
   };
+  // The start sweep (StartSweep.hpp): a given or warm start above the tolerance, refined by one
+  // exact-local Gauss-Seidel sweep for a solver that does not sweep itself; kept when it lowers
+  // the residual (then, within the tolerance, it is the answer).
+  if (options.startSweep && candidate != nullptr && e > options.tolerance && !worksInBodySpace() &&
+      !prepared.bodySpace) {
+    Eigen::VectorXd &s = work.s, &dvs = work.dvs, &us = work.us;
+    s = r;
+    if (sweepContacts(prepared, s)) {
+      const double es = prepared.residual(s, us, dvs);
+      if (es < e) {
+        r.swap(s);
+        e = es;
+        u.swap(us);
+        answerIsStickingStart = false;
+        report.note(kStartSweepNote);
+      }
+    }
+  }
   if (e <= options.tolerance) {
     report.status = SolverStatus::Converged;
     report.nativeResidual = e;

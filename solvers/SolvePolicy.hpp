@@ -128,6 +128,7 @@ struct SolvePolicy {
     o.neverWorseThanStart = true;
     o.sweepPartBlocks = kSweepPartBlocks;
     o.stickingStart = true;
+    o.startSweep = true;
     return o;
   }
   /// nullopt if usable, else the first problem: an empty chain, a bad option or threshold, and

@@ -63,6 +63,14 @@ struct SolverOptions {
   // here (a captured problem is solved as before); on in the World
   // (SolvePolicy::simulationOptions, docs/solvers.md "Sticking start").
   bool stickingStart = false;
+  // The start sweep (StartSweep.hpp): a given or warm start above the tolerance, on a problem with
+  // W's entries (not body space), is refined by one Gauss-Seidel sweep of exact local solves
+  // before a solver that does not sweep itself (Newton) iterates; kept when its residual is
+  // smaller, and the answer when within the tolerance. A resting box whose warm start drifted
+  // past the tolerance is then solved by 3 x 3 solves instead of a Newton iteration. Default off
+  // here (a captured problem is solved as before); on in the World
+  // (SolvePolicy::simulationOptions, docs/solvers.md "Start sweep").
+  bool startSweep = false;
   // Threads lent to this solve by the caller (the World passes its executor when
   // WorldSettings::threads > 1; not saved, not compared). Null: the calling thread only.
   ParallelLoop* parallel = nullptr;

@@ -59,18 +59,30 @@ TEST(ContactEvents, DroppedBoxBeginsPersistsAndEnds) {
   ASSERT_EQ(resting.size(), 1u);
   EXPECT_EQ(resting.front().type, ContactEventType::Persist);
   EXPECT_NEAR(resting.front().normalImpulse, 2.0 * kG * kH, 1e-4 * 2.0 * kG * kH);
-  EXPECT_LT(resting.front().tangentImpulse.norm(), 1e-9);
+  // No friction on a flat floor, within what the solve's tolerance allows a 2 kg box: 1e-6
+  // (1 + |q|) m/s, about 2e-6 N s (its answers are within the tolerance, not exact).
+  EXPECT_LT(resting.front().tangentImpulse.norm(), 1e-5);
 
   world.setVelocity(box, {0, 0, 3.0}, Eigen::Vector3d::Zero());  // thrown up, off the floor
-  int ends = 0;
+  // The step of the throw may still see the pair touching (detection comes before the solve,
+  // and a resting box sits within the touching tolerance or deeper, by the solve's tolerance):
+  // at most one Persist then, and exactly one End.
+  int ends = 0, persists = 0;
   for (int k = 0; k < 5; ++k) {
     world.step(kH);
     for (const engine::ContactEvent& e : world.contactEvents()) {
-      EXPECT_EQ(e.type, ContactEventType::End);
       EXPECT_EQ(e.bodyB, box);
+      if (e.type == ContactEventType::Persist) {
+        EXPECT_EQ(k, 0);
+        EXPECT_EQ(ends, 0);
+        ++persists;
+        continue;
+      }
+      EXPECT_EQ(e.type, ContactEventType::End);
       ++ends;
     }
   }
+  EXPECT_LE(persists, 1);
   EXPECT_EQ(ends, 1);
 }
 
