@@ -28,17 +28,23 @@ geometry::BodyState threeBodies() {
   return state;
 }
 
+// The rows of a contact between bodies a and b at `point` (normal +z) with friction mu.
+joints::RowBlock contactRows(const geometry::BodyState& state, std::uint32_t a, std::uint32_t b,
+                             const Eigen::Vector3d& point, double mu) {
+  joints::ContactPointFrame c;
+  c.bodyA = BodyId{a, 0};
+  c.bodyB = BodyId{b, 0};
+  c.point = point;
+  c.centreA = state.poses[a].position;
+  c.centreB = state.poses[b].position;
+  c.friction = mu;
+  return joints::makeContactRows(c);
+}
+
 joints::RowSet stackRows(const geometry::BodyState& state) {
   joints::RowSet rows;
-  auto add = [&](std::uint32_t a, std::uint32_t b, Eigen::Vector3d point, double mu) {
-    joints::ContactPointFrame c;
-    c.bodyA = BodyId{a, 0};
-    c.bodyB = BodyId{b, 0};
-    c.point = point;
-    c.centreA = state.poses[a].position;
-    c.centreB = state.poses[b].position;
-    c.friction = mu;
-    rows.blocks.push_back(joints::makeContactRows(c));
+  auto add = [&](std::uint32_t a, std::uint32_t b, const Eigen::Vector3d& point, double mu) {
+    rows.blocks.push_back(contactRows(state, a, b, point, mu));
   };
   add(0, 1, Eigen::Vector3d(0.4, 0.3, 0.0), 0.5);
   add(0, 1, Eigen::Vector3d(-0.4, 0.3, 0.0), 0.0);  // frictionless: one unilateral row
@@ -103,15 +109,8 @@ TEST(ProblemAssembler, ContactIslandsGetAnExactlySymmetricW) {
   // ground, and one between the ground and the top box (no shared body with the first).
   const auto state = threeBodies();
   joints::RowSet rows;
-  auto add = [&](std::uint32_t a, std::uint32_t b, Eigen::Vector3d point, double mu) {
-    joints::ContactPointFrame c;
-    c.bodyA = BodyId{a, 0};
-    c.bodyB = BodyId{b, 0};
-    c.point = point;
-    c.centreA = state.poses[a].position;
-    c.centreB = state.poses[b].position;
-    c.friction = mu;
-    rows.blocks.push_back(joints::makeContactRows(c));
+  auto add = [&](std::uint32_t a, std::uint32_t b, const Eigen::Vector3d& point, double mu) {
+    rows.blocks.push_back(contactRows(state, a, b, point, mu));
   };
   add(0, 1, Eigen::Vector3d(0.4, 0.3, 0.0), 0.5);
   add(1, 2, Eigen::Vector3d(0.2, -0.1, 1.0), 0.8);
