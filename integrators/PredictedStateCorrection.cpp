@@ -197,8 +197,9 @@ void assemble(const std::vector<joints::ConstraintEval>& rowsAt, double complian
     }
 }
 
-// Factorizes B (w.b, as assembled: B(a, b) and B(b, a) are separate blocks) by LU.
-bool factorizeNewton(Workspace& w) {
+// p = B^-1 target, B (w.b, as assembled: B(a, b) and B(b, a) are separate blocks) factorized by
+// LU; false when the factorization fails (a singular pivot).
+bool solveNewton(Workspace& w, Eigen::VectorXd& p) {
   if (w.byBlocks) {
     for (std::size_t j = 0; j < w.blockDiagonal.size(); ++j)
       w.blockDiagonal[j] = Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.diagonalPair[j]]);
@@ -207,7 +208,9 @@ bool factorizeNewton(Workspace& w) {
       w.blockMirrored[q] =
           Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.blockMirrorSource[q]]);
     }
-    return w.newtonBlockLu.factorize(w.blockDiagonal, w.blockCoupling, w.blockMirrored);
+    if (!w.newtonBlockLu.factorize(w.blockDiagonal, w.blockCoupling, w.blockMirrored)) return false;
+    w.newtonBlockLu.solve(w.target, p);
+    return true;
   }
   for (std::size_t e = 0; e < w.scalarDiagonal.size(); ++e)
     w.scalarDiagonal[e](0, 0) = w.b[w.scalarDiagonalSource[e]];
@@ -215,22 +218,29 @@ bool factorizeNewton(Workspace& w) {
     w.scalarCoupling[e](0, 0) = w.b[w.scalarSource[e]];
     w.scalarMirrored[e](0, 0) = w.b[w.scalarMirrorSource[e]];
   }
-  return w.newtonLu.factorize(w.scalarDiagonal, w.scalarCoupling, w.scalarMirrored);
+  if (!w.newtonLu.factorize(w.scalarDiagonal, w.scalarCoupling, w.scalarMirrored)) return false;
+  w.newtonLu.solve(w.target, p);
+  return true;
 }
 
-// Factorizes the symmetric J M^-1 J^T of the projection (w.b assembled with the same rows twice).
-bool factorizeSymmetric(Workspace& w) {
+// p = (J M^-1 J^T)^-1 target, the projection's symmetric matrix (w.b assembled with the same rows
+// twice) factorized by LDL^T; false when the factorization fails.
+bool solveSymmetric(Workspace& w, Eigen::VectorXd& p) {
   if (w.byBlocks) {
     for (std::size_t j = 0; j < w.blockDiagonal.size(); ++j)
       w.blockDiagonal[j] = Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.diagonalPair[j]]);
     for (std::size_t q = 0; q < w.blockPairs.size(); ++q)
       w.blockCoupling[q] = Eigen::Map<const Block3>(w.b.data() + w.pairValues[w.blockSource[q]]);
-    return w.symmetricBlockLdlt.factorize(w.blockDiagonal, w.blockCoupling);
+    if (!w.symmetricBlockLdlt.factorize(w.blockDiagonal, w.blockCoupling)) return false;
+    w.symmetricBlockLdlt.solve(w.target, p);
+    return true;
   }
   w.entries.resize(w.symmetricSource.size());
   for (std::size_t e = 0; e < w.symmetricSource.size(); ++e)
     w.entries[e] = w.b[w.symmetricSource[e]];
-  return w.symmetricLdlt.factorize(w.entries);
+  if (!w.symmetricLdlt.factorize(w.entries)) return false;
+  w.symmetricLdlt.solve(w.target, p);
+  return true;
 }
 
 }  // namespace
@@ -380,12 +390,7 @@ void correctPredictedState(geometry::BodyState& state,
     // passes a straight configuration): the remaining passes project (below).
     assemble(w.predicted, compliance, w);  // M^-1 J^T of the start, as above
     w.target = -drift / h;
-    if (!factorizeNewton(w)) break;
-    if (w.byBlocks)
-      w.newtonBlockLu.solve(w.target, p);
-    else
-      w.newtonLu.solve(w.target, p);
-    if (!p.allFinite()) break;
+    if (!solveNewton(w, p) || !p.allFinite()) break;
     saveVelocities();
     const double norm = drift.norm();
     std::swap(w.predicted, w.predictedBefore);  // kept, to be restored if the step fails
@@ -415,12 +420,7 @@ void correctPredictedState(geometry::BodyState& state,
     inverseMassTimesRows(state, w.along, w);
     assemble(w.along, compliance, w);
     w.target = -drift / h;
-    if (!factorizeSymmetric(w)) break;
-    if (w.byBlocks)
-      w.symmetricBlockLdlt.solve(w.target, p);
-    else
-      w.symmetricLdlt.solve(w.target, p);
-    if (!p.allFinite()) break;
+    if (!solveSymmetric(w, p) || !p.allFinite()) break;
     saveVelocities();
     const double norm = drift.norm();
     bool improved = false;
