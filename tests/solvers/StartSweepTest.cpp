@@ -12,6 +12,10 @@
 
 #include "TestProblems.hpp"
 
+#include <array>
+#include <cmath>
+#include <random>
+
 using namespace coulomb::solvers;
 
 namespace {
@@ -81,6 +85,43 @@ TEST(StartSweep, OneContactIsSolvedExactlyInEveryCaseOfItsLaw) {
     Eigen::VectorXd r = Eigen::Vector3d(0.3, 0.1, -0.1);  // any start
     EXPECT_LT(residualAfterSweep(p, r), 1e-13) << c.name;
   }
+}
+
+TEST(StartSweep, SlidingContactsAreSolvedExactlyFromAnyStart) {
+  // General blocks (coupled normal and tangents, anisotropic W_TT, condition up to ~1e3) pushed
+  // to slide: from no impulse, from a random one and from one near the answer (the warm start of
+  // a sliding contact), the sweep's answer is exact, whichever of its slip paths finds it.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> logScale(-1.5, 1.5);
+  int sliding = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    Eigen::Matrix3d A;
+    for (int i = 0; i < 9; ++i) A(i / 3, i % 3) = normal(rng);
+    const Eigen::Vector3d scales(std::pow(10.0, logScale(rng)), std::pow(10.0, logScale(rng)),
+                                 std::pow(10.0, logScale(rng)));
+    const Eigen::Matrix3d W =
+        A * scales.asDiagonal() * A.transpose() + 1e-3 * Eigen::Matrix3d::Identity();
+    const double mu = std::array{0.1, 0.3, 0.6, 1.0, 2.0}[trial % 5];
+    const Eigen::Vector3d q(-std::abs(normal(rng)) - 0.1, 3.0 * normal(rng), 3.0 * normal(rng));
+    const ContactProblem p = fixtures::singleContact(W, q, mu);
+    const SolveOutcome exact = exactAnswer(p);
+    if (exact.report.residual > 1e-12) continue;  // a block the reference does not solve
+    const Eigen::Vector3d rExact = exact.impulses;
+    const Eigen::Vector3d uExact = W * rExact + q;
+    if (std::hypot(uExact[1], uExact[2]) < 1e-6 * q.norm()) continue;  // sticks
+    ++sliding;
+    const Eigen::Vector3d nearAnswer =
+        rExact + 0.05 * rExact.norm() * Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+    for (const Eigen::Vector3d& start :
+         {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(normal(rng), normal(rng), normal(rng)),
+          nearAnswer}) {
+      Eigen::VectorXd r = start;
+      EXPECT_LT(residualAfterSweep(p, r), 1e-12)
+          << "trial " << trial << " from " << start.transpose();
+    }
+  }
+  EXPECT_GT(sliding, 100);
 }
 
 TEST(StartSweep, ADriftedStartOfARestingOrSlidingBoxComesCloser) {
