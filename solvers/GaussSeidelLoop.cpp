@@ -16,28 +16,6 @@ namespace coulomb::solvers {
 
 namespace {
 
-// Local free velocity of block b (3.1): q_b + sum over the other blocks of its row.
-void localFreeVelocity(const PreparedProblem& p, int b, const Eigen::VectorXd& r, double* qt) {
-  const BlockSparseMatrix& W = p.W;
-  const int off = p.offset[b], s = W.blockSize(b);
-  for (int a = 0; a < s; ++a) qt[a] = p.q[off + a];
-  for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
-    const int j = W.blockColumn(k);
-    if (j == b) continue;
-    const double* v = W.blockValues(k);
-    const int oj = p.offset[j], sj = W.blockSize(j);
-    if (s == 3 && sj == 3) {
-      const double x0 = r[oj], x1 = r[oj + 1], x2 = r[oj + 2];
-      qt[0] += v[0] * x0 + v[1] * x1 + v[2] * x2;
-      qt[1] += v[3] * x0 + v[4] * x1 + v[5] * x2;
-      qt[2] += v[6] * x0 + v[7] * x1 + v[8] * x2;
-    } else {
-      for (int a = 0; a < s; ++a)
-        for (int c = 0; c < sj; ++c) qt[a] += v[sj * a + c] * r[oj + c];
-    }
-  }
-}
-
 // The same in body space (BodySpaceDelassus): q_b + J_b dv - W_bb r_b with dv = M^-1 J^T r, so
 // O(1) per block instead of one product per block sharing a body.
 void bodySpaceFreeVelocity(const PreparedProblem& p, int b, const Eigen::VectorXd& r,
@@ -88,6 +66,27 @@ void gatherSweep(const PreparedProblem& p, const std::vector<int>& order,
 }
 
 }  // namespace
+
+void localFreeVelocity(const PreparedProblem& p, int b, const Eigen::VectorXd& r, double* qt) {
+  const BlockSparseMatrix& W = p.W;
+  const int off = p.offset[b], s = W.blockSize(b);
+  for (int a = 0; a < s; ++a) qt[a] = p.q[off + a];
+  for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
+    const int j = W.blockColumn(k);
+    if (j == b) continue;
+    const double* v = W.blockValues(k);
+    const int oj = p.offset[j], sj = W.blockSize(j);
+    if (s == 3 && sj == 3) {
+      const double x0 = r[oj], x1 = r[oj + 1], x2 = r[oj + 2];
+      qt[0] += v[0] * x0 + v[1] * x1 + v[2] * x2;
+      qt[1] += v[3] * x0 + v[4] * x1 + v[5] * x2;
+      qt[2] += v[6] * x0 + v[7] * x1 + v[8] * x2;
+    } else {
+      for (int a = 0; a < s; ++a)
+        for (int c = 0; c < sj; ++c) qt[a] += v[sj * a + c] * r[oj + c];
+    }
+  }
+}
 
 void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
                     const GaussSeidelSettings& settings, const ContactUpdate& update,

@@ -61,6 +61,11 @@ struct GaussSeidelWorkspace {
   Eigen::VectorXd previous, direction, previousDv, directionDv;  // conjugateGradient only
 };
 
+// Local free velocity of block b (3.1) from W's entries (problem.W): q~_b = q_b + sum over the
+// other blocks d of W_bd r_d, written to qt[0 .. size of b). Also the start sweep's
+// (StartSweep.hpp).
+void localFreeVelocity(const PreparedProblem& problem, int b, const Eigen::VectorXd& r, double* qt);
+
 void runGaussSeidel(const PreparedProblem& problem, const SolveContext& context,
                     const GaussSeidelSettings& settings, const ContactUpdate& update,
                     Eigen::VectorXd& r, SolverReport& report,
