@@ -19,7 +19,7 @@ void BodySpaceDelassus::reset(int bodyCount, const std::vector<int>& blockSizes)
 void BodySpaceDelassus::reset(int bodyCount) {
   if (bodyCount < 0) throw std::invalid_argument("BodySpaceDelassus: negative body count");
   bodies_ = bodyCount;
-  nonFinite_ = rescan_ = false;
+  finitenessKnown_ = false;
   entriesValid_ = false;
   diagonal_.clear();
   offset_.assign(size_.size() + 1, 0);
@@ -39,8 +39,8 @@ void BodySpaceDelassus::gather(const int* blocks, int count, BodySpaceDelassus& 
   out.size_.resize(count);
   for (int i = 0; i < count; ++i) out.size_[i] = size_[blocks[i]];
   out.bodies_ = bodies_;
-  out.nonFinite_ = nonFinite_;
-  out.rescan_ = rescan_;
+  out.finitenessKnown_ = finitenessKnown_;
+  out.finite_ = finite_;
   out.entriesValid_ = false;
   out.diagonal_.clear();
   out.offset_.resize(count + 1);
@@ -60,18 +60,6 @@ void BodySpaceDelassus::gather(const int* blocks, int count, BodySpaceDelassus& 
   }
 }
 
-void BodySpaceDelassus::noteSideSet(int block, int side, const double* values, std::size_t count) {
-  // x * 0 is 0 for finite x and NaN for inf or NaN (see allFinite). Four sums, so that the adds do
-  // not wait on each other (this runs for every row side of every contact of every step).
-  double s[4] = {0.0, 0.0, 0.0, 0.0};
-  std::size_t i = 0;
-  for (; i + 4 <= count; i += 4)
-    for (int k = 0; k < 4; ++k) s[k] += values[i + k] * 0.0;
-  for (; i < count; ++i) s[0] += values[i] * 0.0;
-  nonFinite_ = nonFinite_ || !((s[0] + s[1]) + (s[2] + s[3]) == 0.0);
-  if (body_[2 * block + side] >= 0) rescan_ = true;  // an overwrite may have removed a bad value
-}
-
 void BodySpaceDelassus::setSide(int block, int side, int body,
                                 const Eigen::Ref<const Eigen::MatrixXd>& J,
                                 const Eigen::Ref<const Eigen::MatrixXd>& G) {
@@ -85,9 +73,8 @@ void BodySpaceDelassus::setSide(int block, int side, int body,
       j_[(2 * row + side) * 6 + c] = J(a, c);
       g_[(2 * row + side) * 6 + c] = G(c, a);
     }
-    noteSideSet(block, side, &j_[(2 * row + side) * 6], 6);
-    noteSideSet(block, side, &g_[(2 * row + side) * 6], 6);
   }
+  finitenessKnown_ = false;
   body_[2 * block + side] = body;
   entriesValid_ = false;
   diagonal_.clear();
@@ -97,8 +84,7 @@ void BodySpaceDelassus::setSide(int block, int side, int body, const double* J, 
   if (block < 0 || block >= blockCount() || side < 0 || side > 1 || body < 0 || body >= bodies_)
     throw std::invalid_argument("BodySpaceDelassus::setSide: bad block, side or body");
   const int k = size_[block];
-  noteSideSet(block, side, J, static_cast<std::size_t>(6 * k));
-  noteSideSet(block, side, G, static_cast<std::size_t>(6 * k));
+  finitenessKnown_ = false;
   body_[2 * block + side] = body;
   const auto first = static_cast<std::size_t>((2 * offset_[block] + side) * 6);
   for (int a = 0; a < k; ++a) {  // row a of the block: 12 a further on (two sides per row)
@@ -135,6 +121,27 @@ const std::vector<double>& BodySpaceDelassus::diagonalBlocks() const {
 
 void BodySpaceDelassus::computeDiagonalBlock(int b, double* out) const {
   const int k = size_[b];
+  if (k == 3 && body_[2 * b] != body_[2 * b + 1]) {
+    // A contact between two bodies (or one and a static one): W_bb = sum over sides of
+    // J_s M_s^-1 J_s^T is symmetric (G = M^-1 J^T), so its upper triangle is summed and mirrored
+    // (exactly symmetric; 12 products of six instead of 18).
+    double w[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // (0,0) (0,1) (0,2) (1,1) (1,2) (2,2)
+    const int row = offset_[b];
+    for (int side = 0; side < 2; ++side) {
+      if (body_[2 * b + side] < 0) continue;
+      const double *j0 = J(row, side), *j1 = J(row + 1, side), *j2 = J(row + 2, side);
+      const double *g0 = G(row, side), *g1 = G(row + 1, side), *g2 = G(row + 2, side);
+      w[0] += dot6(j0, g0);
+      w[1] += dot6(j0, g1);
+      w[2] += dot6(j0, g2);
+      w[3] += dot6(j1, g1);
+      w[4] += dot6(j1, g2);
+      w[5] += dot6(j2, g2);
+    }
+    out[0] = w[0], out[1] = out[3] = w[1], out[2] = out[6] = w[2];
+    out[4] = w[3], out[5] = out[7] = w[4], out[8] = w[5];
+    return;
+  }
   std::fill(out, out + k * k, 0.0);
   for (int side = 0; side < 2; ++side) {
     const int body = body_[2 * b + side];
@@ -162,23 +169,26 @@ BodySpaceDelassus BodySpaceDelassus::selectRows(const std::vector<int>& rows) co
       std::copy_n(G(row, side), 6, &out.g_[(2 * k + side) * 6]);
     }
   }
-  out.rescan_ = true;  // the selected rows may leave out this operator's non-finite values
+  out.finitenessKnown_ = false;  // the selected rows may leave out non-finite values
   return out;
 }
 
 bool BodySpaceDelassus::allFinite() const {
-  // x * 0 is 0 for finite x and NaN for inf or NaN: one vectorisable pass instead of a branch per
-  // number (validate() runs this on every solve).
-  if (!rescan_) return !nonFinite_;
-  double s = 0.0;
+  if (finitenessKnown_) return finite_;
+  // x * 0 is 0 for finite x and NaN for inf or NaN: a pass without a branch per number, in six
+  // independent sums (a side's row: J and G, six numbers each).
+  double s[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   for (int b = 0; b < blockCount(); ++b)
     for (int side = 0; side < 2; ++side) {
       if (body_[2 * b + side] < 0) continue;
-      for (int a = 0; a < size_[b]; ++a)
-        for (int c = 0; c < 6; ++c)
-          s += J(offset_[b] + a, side)[c] * 0.0 + G(offset_[b] + a, side)[c] * 0.0;
+      for (int a = 0; a < size_[b]; ++a) {
+        const double *j = J(offset_[b] + a, side), *g = G(offset_[b] + a, side);
+        for (int c = 0; c < 6; ++c) s[c] += j[c] * 0.0 + g[c] * 0.0;
+      }
     }
-  return s == 0.0;
+  finite_ = ((s[0] + s[1]) + (s[2] + s[3])) + (s[4] + s[5]) == 0.0;
+  finitenessKnown_ = true;
+  return finite_;
 }
 
 const BlockSparseMatrix& BodySpaceDelassus::toBlockSparse() const {

@@ -90,8 +90,9 @@ class BodySpaceDelassus {
   /// The operator of the given rows only (each a 1-row block on the same bodies), e.g. the
   /// contacts' normal rows for the split impulse: W' = W restricted to those rows and columns.
   [[nodiscard]] BodySpaceDelassus selectRows(const std::vector<int>& rows) const;
-  /// Every number of the set sides finite (unset sides are not read). O(1) unless a side was
-  /// set twice (then one pass over the set sides): setSide checks what it copies.
+  /// Every number of the set sides finite (unset sides are not read): one pass over the set
+  /// sides, kept until a side is set again (validate() asks on every solve; a check per side as
+  /// it is set cost twice that pass on a resting pyramid).
   [[nodiscard]] bool allFinite() const;
   /// W with every nonzero block (k, j) of blocks sharing a body, cached after the first call.
   [[nodiscard]] const BlockSparseMatrix& toBlockSparse() const;
@@ -104,13 +105,12 @@ class BodySpaceDelassus {
   [[nodiscard]] const double* G(int row, int side) const { return &g_[(2 * row + side) * 6]; }
   void reset(int bodyCount);  // from size_
   void computeDiagonalBlock(int b, double* out) const;
-  void noteSideSet(int block, int side, const double* values, std::size_t count);
   int bodies_ = 0;
   std::vector<int> size_, offset_;
-  std::vector<int> body_;      // 2 per block, -1 = no unknowns on that side
-  std::vector<double> j_, g_;  // 2 x 6 per row: J_s row and G_s column of side s
-  bool nonFinite_ = false;     // a value copied by setSide was inf or NaN
-  bool rescan_ = false;        // a side was set twice: allFinite() checks the stored values
+  std::vector<int> body_;                 // 2 per block, -1 = no unknowns on that side
+  std::vector<double> j_, g_;             // 2 x 6 per row: J_s row and G_s column of side s
+  mutable bool finitenessKnown_ = false;  // allFinite()'s answer, until a side is set
+  mutable bool finite_ = true;
   // toBlockSparse() cache and the lists it is built from, kept for their storage.
   struct CsrScratch {
     std::vector<int> bodyStart, bodyBlocks, next, rowStart, columns, candidates;

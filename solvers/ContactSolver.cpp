@@ -4,7 +4,6 @@
 #include <coulomb/solvers/StartSweep.hpp>
 
 #include <cmath>
-#include <cstring>
 #include <exception>
 #include <sstream>
 #include <string_view>
@@ -98,17 +97,20 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   Eigen::VectorXd &u = work.u, &dv = work.dv, &r = work.r;
   r.setZero(n);
   work.stepQ.resize(n);  // sized with the others: its first use in a steady step allocates nothing
-  double e = prepared.residual(r, u, dv);
+  double eAbsolute = 0.0;  // e's absolute value (PreparedProblem::recordEnd)
+  double e = prepared.residual(r, u, dv, &eAbsolute);
   // Projected onto the constraint set, kept when its residual is at most `e` (or below it).
   auto tryStart = [&](const Eigen::VectorXd& candidate, bool tieKeeps) {
     Eigen::VectorXd& s = work.s;
     prepared.fromOriginal(candidate, s);
     prepared.project(s);
     Eigen::VectorXd &dvs = work.dvs, &us = work.us;
-    const double es = prepared.residual(s, us, dvs);
+    double esAbsolute = 0.0;
+    const double es = prepared.residual(s, us, dvs, &esAbsolute);
     if (es < e || (tieKeeps && es == e)) {
       r = s;
       e = es;
+      eAbsolute = esAbsolute;
       dv.swap(dvs);
       u.swap(us);
       return true;
@@ -178,6 +180,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     prepared.start.dv = dv;
     prepared.start.u = u;
     prepared.start.residual = e;
+    prepared.start.absolute = eAbsolute;
     prepared.start.inBodySpace = prepared.bodySpace != nullptr;
     const Eigen::VectorXd& from = prepared.start.r;
     try {
@@ -202,10 +205,12 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     Eigen::VectorXd &s = work.s, &dvs = work.dvs, &us = work.us;
     s = r;
     if (sweepContacts(prepared, s)) {
-      const double es = prepared.residual(s, us, dvs);
+      double esAbsolute = 0.0;
+      const double es = prepared.residual(s, us, dvs, &esAbsolute);
       if (es < e) {
         r.swap(s);
         e = es;
+        eAbsolute = esAbsolute;
         u.swap(us);
         answerIsStickingStart = false;
         report.note(kStartSweepNote);
@@ -216,7 +221,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     report.status = SolverStatus::Converged;
     report.nativeResidual = e;
     report.nativeResidualName = "common residual of the start";
-    prepared.recordEnd(r, u);
+    prepared.recordEnd(r, u, e, eAbsolute);
   } else if (!restart) {
     answerIsStickingStart = false;
     runFrom(options);
@@ -229,7 +234,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
         report.status == SolverStatus::MaxIterations && !report.timeLimitReached;
     if (unfinished) {
       const int used = report.iterations;
-      e = prepared.residual(r, u, dv);
+      e = prepared.residual(r, u, dv, &eAbsolute);
       // The iterate takes the warm start's place in choosing the stopped contacts: those it
       // loads. It is in the problem's variables: body space is kept only for problems that
       // PreparedProblem does not rescale (no anisotropic cone).
@@ -242,7 +247,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
           report.status = SolverStatus::Converged;
           report.nativeResidual = e;
           answerIsStickingStart = true;
-          prepared.recordEnd(r, u);
+          prepared.recordEnd(r, u, e, eAbsolute);
         } else {
           runFrom(restOptions);
           report.iterations += used;
@@ -256,6 +261,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
         dv = prepared.start.dv;
         u = prepared.start.u;
         e = prepared.start.residual;
+        eAbsolute = prepared.start.absolute;
         runFrom(options);
         report.iterations += used;
       }
@@ -271,12 +277,9 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // The common residual: read from the solver's last evaluation when that was of this very answer
   // on the problem's own W (the same bits), else computed.
   const PreparedProblem::KnownEvaluation& end = prepared.end;
-  const bool endIsAnswer =
-      end.known && prepared.scale.size() == 0 &&
-      (end.inBodySpace ? problem.W.bodySpaceOperator() != nullptr
-                       : problem.W.blockSparseMatrix() != nullptr) &&
-      end.r.size() == r.size() &&
-      std::memcmp(end.r.data(), r.data(), sizeof(double) * static_cast<std::size_t>(n)) == 0;
+  const bool endIsAnswer = end.isOf(r) && prepared.scale.size() == 0 &&
+                           (end.inBodySpace ? problem.W.bodySpaceOperator() != nullptr
+                                            : problem.W.blockSparseMatrix() != nullptr);
   if (endIsAnswer) {
     out.velocities = end.u;
     report.residual = end.residual;

@@ -116,14 +116,15 @@ double PreparedProblem::sweepResidualFromVelocity(const Eigen::VectorXd& r,
   return solvers::sweepResidualFromVelocity(blocks, r, u) / (1.0 + qNorm);
 }
 
-double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u) const {
+double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u,
+                                 double* absolute) const {
   velocity(r, u);
-  return residualFromVelocity(r, u);
+  return residualFromVelocity(r, u, absolute);
 }
 
-double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u,
-                                 Eigen::VectorXd& dv) const {
-  if (!bodySpace) return residual(r, u);
+double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u, Eigen::VectorXd& dv,
+                                 double* absolute) const {
+  if (!bodySpace) return residual(r, u, absolute);
   u = q;
   if (std::all_of(r.data(), r.data() + r.size(), [](double x) { return x == 0.0; })) {
     // W r = 0: u = q (as velocity()); dv = +0 everywhere, what bodyVelocities gives for r = 0.
@@ -132,24 +133,30 @@ double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u,
     bodySpace->bodyVelocities(r, dv);
     bodySpace->addRowVelocities(dv, u.data());  // the same partition as `offset`
   }
-  return residualFromVelocity(r, u);
+  return residualFromVelocity(r, u, absolute);
 }
 
 bool PreparedProblem::startEvaluatedAs(const Eigen::VectorXd& r) const {
   return startIs(r) && start.u.size() == r.size() && start.inBodySpace == (bodySpace != nullptr);
 }
 
-void PreparedProblem::recordEnd(const Eigen::VectorXd& r, const Eigen::VectorXd& u) const {
+void PreparedProblem::recordEnd(const Eigen::VectorXd& r, const Eigen::VectorXd& u, double residual,
+                                double absolute) const {
   end.known = true;
   end.r = r;
   end.u = u;
-  end.residual = residualFromVelocity(r, u, &end.absolute);
+  end.residual = residual;
+  end.absolute = absolute;
   end.inBodySpace = bodySpace != nullptr;
 }
 
+bool PreparedProblem::KnownEvaluation::isOf(const Eigen::VectorXd& x) const {
+  return known && x.size() == r.size() &&
+         std::memcmp(x.data(), r.data(), sizeof(double) * static_cast<size_t>(x.size())) == 0;
+}
+
 bool PreparedProblem::startIs(const Eigen::VectorXd& r) const {
-  return start.known && r.size() == start.r.size() &&
-         std::memcmp(r.data(), start.r.data(), sizeof(double) * static_cast<size_t>(r.size())) == 0;
+  return start.isOf(r);
 }
 
 void PreparedProblem::project(Eigen::VectorXd& r) const {

@@ -52,6 +52,8 @@ struct PreparedProblem {
     }
     KnownEvaluation& operator=(KnownEvaluation&&) = default;
     ~KnownEvaluation() = default;
+    // True when known and made for r, bit for bit.
+    [[nodiscard]] bool isOf(const Eigen::VectorXd& r) const;
     bool known = false;
     Eigen::VectorXd r, u, dv;  // dv: body space only
     double residual = 0.0, absolute = 0.0;
@@ -80,10 +82,12 @@ struct PreparedProblem {
   [[nodiscard]] double largestDiagonal() const;             // max_i W_ii
 
   void velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;  // u = W r + q
-  // e_rel of (1.8) in this problem's variables; computes u.
-  double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u) const;
+  // e_rel of (1.8) in this problem's variables; computes u. With `absolute`, also the unscaled
+  // ||F(r)||.
+  double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u, double* absolute = nullptr) const;
   // The same (bit for bit) that also keeps dv = M^-1 J^T r in body space (dv untouched otherwise).
-  double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u, Eigen::VectorXd& dv) const;
+  double residual(const Eigen::VectorXd& r, Eigen::VectorXd& u, Eigen::VectorXd& dv,
+                  double* absolute = nullptr) const;
   // True when `start` is known and r is bitwise the same vector.
   [[nodiscard]] bool startIs(const Eigen::VectorXd& r) const;
   // With `absolute`, also the unscaled ||F(r)|| (the common residual's absolute value).
@@ -91,8 +95,10 @@ struct PreparedProblem {
                                             double* absolute = nullptr) const;
   // True when `start` is known for r and was evaluated on W as it is now (u reusable).
   [[nodiscard]] bool startEvaluatedAs(const Eigen::VectorXd& r) const;
-  // Records r (the solver's answer) with u = W r + q as `end`.
-  void recordEnd(const Eigen::VectorXd& r, const Eigen::VectorXd& u) const;
+  // Records r (the solver's answer) with u = W r + q and its residual (relative, absolute: what
+  // residual() gave for them) as `end`.
+  void recordEnd(const Eigen::VectorXd& r, const Eigen::VectorXd& u, double residual,
+                 double absolute) const;
   // The same with sweepNorm (round-off apart): Gauss-Seidel's convergence checks.
   [[nodiscard]] double sweepResidualFromVelocity(const Eigen::VectorXd& r,
                                                  const Eigen::VectorXd& u) const;

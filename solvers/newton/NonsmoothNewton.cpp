@@ -182,12 +182,13 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
   NewtonSystem system(p, function, s, work);
   Eigen::VectorXd &u = work.u, &phi = work.phi, &d = work.d, &wd = work.wd, &jd = work.jd;
   Eigen::VectorXd &trialR = work.trialR, &trialU = work.trialU, &trialPhi = work.trialPhi;
-  double e = 0.0;
-  if (p.startEvaluatedAs(r)) {  // ContactSolver's start: its residual and u are known
+  double e = 0.0, eAbsolute = 0.0;  // the common residual of r (relative, absolute)
+  if (p.startEvaluatedAs(r)) {      // ContactSolver's start: its residual and u are known
     e = p.start.residual;
+    eAbsolute = p.start.absolute;
     u = p.start.u;
   } else {
-    e = p.residual(r, u);
+    e = p.residual(r, u, &eAbsolute);
   }
   Eigen::VectorXd& best = work.best;
   best = r;
@@ -295,7 +296,7 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
     }
     const double stepNorm = alpha * d.norm();
     r += alpha * d;
-    e = p.residual(r, u);  // u recomputed: the residual is measured after the update
+    e = p.residual(r, u, &eAbsolute);  // u recomputed: measured after the update
     if (!r.allFinite() || !std::isfinite(e)) {
       report.status = SolverStatus::NumericalFailure;
       report.note("non-finite iterate");
@@ -335,7 +336,7 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
   }
   report.iterations += k;
   if (report.status == SolverStatus::Converged)
-    p.recordEnd(r, u);  // u = W r + q of the answer (measured after the last update)
+    p.recordEnd(r, u, e, eAbsolute);  // u = W r + q of the answer, after the last update
   else
     r = best;
   if (steepest > 0) {
