@@ -146,21 +146,21 @@ std::optional<std::string> ContactProblem::validate() const {
     for (int i = 0; i < n; ++i)
       if (!std::isfinite((*warmStart)[i]))
         return "warm start at " + where(blocks, i) + " is not finite";
-  // Entries of W: non-finite anywhere (stored), diagonal positive.
-  // Row a of block b (the block known: no search per row).
+  // Entries of W: non-finite anywhere (stored), diagonal positive (>= 0 on a frictionless
+  // tangent row). The test is a comparison per row; the message is built only for a bad one.
+  auto diagonalFine = [&](size_t b, int a, double w) {
+    if (w > 0) return true;
+    const ConstraintBlock& k = blocks[b];
+    return k.isContact() && a != 0 && (k.anisotropic ? (a == 1 ? k.mu1 : k.mu2) : k.mu) == 0.0 &&
+           w >= 0;
+  };
   // Row a of block b, whose first row is `first`.
   auto diagonalOkIn = [&](size_t b, int first, int a, double w) -> std::optional<std::string> {
-    const int row = first + a;
-    const bool frictionlessTangent =
-        blocks[b].isContact() && a != 0 &&
-        (blocks[b].anisotropic ? (a == 1 ? blocks[b].mu1 : blocks[b].mu2) : blocks[b].mu) == 0.0;
-    if (frictionlessTangent ? w < 0 : !(w > 0)) {
-      std::ostringstream s;
-      s << "W diagonal at " << where(blocks, row) << " is " << w
-        << ", must be positive (W block not positive on its diagonal)";
-      return s.str();
-    }
-    return std::nullopt;
+    if (diagonalFine(b, a, w)) return std::nullopt;
+    std::ostringstream s;
+    s << "W diagonal at " << where(blocks, first + a) << " is " << w
+      << ", must be positive (W block not positive on its diagonal)";
+    return s.str();
   };
   // Every diagonal entry W_ii given by diagonalAt(i), block by block.
   auto diagonalOk = [&](auto diagonalAt) -> std::optional<std::string> {
@@ -195,22 +195,29 @@ std::optional<std::string> ContactProblem::validate() const {
         return say("W has no diagonal block for block ", b);
       }
       const double* v = s->blockValues(s->diagonalBlock(b));
-      for (int a = 0; a < s->blockSize(b); ++a)
-        if (auto e = diagonalOkIn(static_cast<size_t>(b), s->blockOffset(b), a,
-                                  v[(s->blockSize(b) + 1) * a]))
-          return e;
+      for (int a = 0; a < s->blockSize(b); ++a) {
+        const double w = v[(s->blockSize(b) + 1) * a];
+        if (!diagonalFine(static_cast<size_t>(b), a, w))
+          return diagonalOkIn(static_cast<size_t>(b), s->blockOffset(b), a, w);
+      }
     }
   } else if (const BodySpaceDelassus* s = W.bodySpaceOperator()) {
-    // O(rows): the factors are finite, so is every entry of W; the diagonal from the factors'
-    // cached blocks (the same partition as the problem's blocks, checked above).
-    if (!s->allFinite()) return std::string("W (body-space factors J, M^-1 J^T) is not finite");
+    // O(rows), from the diagonal blocks the solvers compute anyway (the same partition as the
+    // problem's blocks, checked above). Every number of the factors enters W's diagonal: J_s[a][c]
+    // and G_s[a][c] meet in the term J_s[a][c] G_s[a][c] of W_aa, so an inf or NaN among them makes
+    // W_aa inf or NaN; finite factors give a finite W (an overflow is caught here too).
     const std::vector<double>& d = s->diagonalBlocks();
     int first = 0;
     for (size_t b = 0; b < blocks.size(); first += blocks[b++].size()) {
       const int k = blocks[b].size();
-      for (int a = 0; a < k; ++a)
-        if (auto e = diagonalOkIn(b, first, a, d[9 * b + static_cast<size_t>((k + 1) * a)]))
-          return e;
+      for (int a = 0; a < k; ++a) {
+        const double w = d[9 * b + static_cast<size_t>((k + 1) * a)];
+        if (std::isfinite(w) && diagonalFine(b, a, w)) continue;
+        if (!std::isfinite(w))
+          return say("W (body-space factors J, M^-1 J^T) is not finite: its diagonal at ",
+                     where(blocks, first + a), " is ", w);
+        return diagonalOkIn(b, first, a, w);
+      }
     }
   } else {
     for (int i = 0; i < n; ++i) {

@@ -170,5 +170,19 @@ TEST(BodySpaceDelassus, RawSidesCachedDiagonalAndFiniteness) {
   bad(2, 5) = std::numeric_limits<double>::quiet_NaN();
   raw.setSide(1, 0, 0, bad.data(), G2.data());
   EXPECT_FALSE(raw.allFinite());
+  raw.setSide(1, 0, 0, J2.data(), G2.data());  // overwritten: finite again
+  EXPECT_TRUE(raw.allFinite());
+  // A block with one side (a contact on a static body) is checked too, in J and in G.
+  const int oneSided = raw.blockCount() - 1;
+  const int height = c.sizes[static_cast<std::size_t>(oneSided)];
+  Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> J1 =
+      Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>::Ones(height, 6);
+  Eigen::MatrixXd G1 = Eigen::MatrixXd::Ones(6, height);
+  G1(5, height - 1) = std::numeric_limits<double>::quiet_NaN();
+  raw.setSide(oneSided, 0, 3, J1.data(), G1.data());
+  EXPECT_FALSE(raw.allFinite());
+  G1(5, height - 1) = 1.0;
+  raw.setSide(oneSided, 0, 3, J1.data(), G1.data());
+  EXPECT_TRUE(raw.allFinite());
   EXPECT_THROW(raw.setSide(1, 0, 9, J2.data(), G2.data()), std::invalid_argument);
 }

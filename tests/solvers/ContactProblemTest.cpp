@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
 
 #include <limits>
@@ -66,6 +67,29 @@ TEST(ContactProblem, NamesTheFirstBrokenInvariant) {
   p.W = DelassusOperator::dense(Eigen::MatrixXd::Identity(7, 7));
   p.q = Eigen::VectorXd::Zero(7);
   EXPECT_TRUE(mentions(p.validate(), "not an interval"));
+}
+
+// Body-space W (the World's large islands): an inf or NaN anywhere in the factors J and
+// M^-1 J^T, on a contact between two bodies or on one touching a static body, is named.
+TEST(ContactProblem, NonFiniteBodySpaceFactorsAreNamed) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const bool twoBodies : {true, false})
+    for (const bool inJ : {true, false})
+      for (const double bad : {nan, inf, -inf})
+        for (int entry = 0; entry < 18; ++entry) {
+          auto factors = std::make_shared<BodySpaceDelassus>(2, std::vector<int>{3});
+          Eigen::Matrix<double, 3, 6, Eigen::RowMajor> J;
+          J << 1, 0, 0, 0, 0.1, 0, 0, 1, 0, -0.1, 0, 0.2, 0, 0, 1, 0, -0.2, 0;
+          Eigen::Matrix<double, 6, 3> G = J.transpose();
+          (inJ ? J.data() : G.data())[entry] = bad;
+          factors->setSide(0, 0, 0, J.data(), G.data());
+          if (twoBodies) factors->setSide(0, 1, 1, J.data(), G.data());
+          ContactProblem p = ContactProblem::contacts(DelassusOperator::bodySpace(factors),
+                                                      Eigen::Vector3d(-1, 0, 0), {0.5}, "one");
+          EXPECT_TRUE(mentions(p.validate(), "is not finite"))
+              << twoBodies << inJ << bad << " at " << entry;
+        }
 }
 
 TEST(ContactProblem, MixedBlocksAndMatrixFree) {
