@@ -30,10 +30,6 @@ struct BoxFrame {
   Eigen::Vector3d half;
 };
 
-double projectedRadius(const BoxFrame& box, const Eigen::Vector3d& axis) {
-  return (box.axes.transpose() * axis).cwiseAbs().dot(box.half);
-}
-
 // Clips the incident face of `inc` against face (axis, sign) of `ref`; normal nRef points from
 // ref toward inc.
 void faceContact(const BoxFrame& ref, int axis, double sign, const BoxFrame& inc, bool refIsB,
@@ -87,29 +83,39 @@ bool boxBox(const Box& a, const Pose& pa, const Box& b, const Pose& pb, double m
   const BoxFrame B{pb.position, pb.rotationMatrix(), b.halfExtents};
   const Eigen::Vector3d d = B.centre - A.centre;
 
-  // Separation along every candidate axis (> 0: a gap of that size along the axis).
+  // Separation along every candidate axis (> 0: a gap of that size along the axis), in A's frame
+  // (Gottschalk, Lin and Manocha, OBBTree, SIGGRAPH 1996, sec. 4): with C = A^T B (C_ij = A_i .
+  // B_j) and t = A^T d, the 15 axes need no world-frame products. Edge axis A_i x B_j has length L
+  // = |C_{i+1,j}, C_{i+2,j}|; its projection of d is t_{i+2} C_{i+1,j} - t_{i+1} C_{i+2,j}, A's
+  // radius along it a_{i+1} |C_{i+2,j}| + a_{i+2} |C_{i+1,j}|, B's b_{j+1} |C_{i,j+2}| +
+  // b_{j+2} |C_{i,j+1}| (all over L).
+  const Eigen::Matrix3d C = A.axes.transpose() * B.axes;
+  const Eigen::Matrix3d absC = C.cwiseAbs();
+  const Eigen::Vector3d t = A.axes.transpose() * d;
+  const Eigen::Vector3d &ha = A.half, &hb = B.half;
   double bestA = -1e300, bestB = -1e300, bestEdge = -1e300;
   int faceA = 0, faceB = 0, edgeI = -1, edgeJ = -1;
   for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d axis = A.axes.col(i);
-    const double sep = std::abs(axis.dot(d)) - A.half[i] - projectedRadius(B, axis);
+    const double sep = std::abs(t[i]) - ha[i] - absC.row(i).dot(hb);
     if (sep > bestA) bestA = sep, faceA = i;
   }
   for (int j = 0; j < 3; ++j) {
-    const Eigen::Vector3d axis = B.axes.col(j);
-    const double sep = std::abs(axis.dot(d)) - B.half[j] - projectedRadius(A, axis);
+    const double sep = std::abs(C.col(j).dot(t)) - hb[j] - absC.col(j).dot(ha);
     if (sep > bestB) bestB = sep, faceB = j;
   }
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
-      const Eigen::Vector3d cross = A.axes.col(i).cross(B.axes.col(j));
-      const double length = cross.norm();
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double length = std::sqrt(C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j));
       if (length < 1e-6) continue;  // parallel edges: covered by the face axes
-      const Eigen::Vector3d axis = cross / length;
-      const double sep =
-          std::abs(axis.dot(d)) - projectedRadius(A, axis) - projectedRadius(B, axis);
+      const double sep = (std::abs(t[i2] * C(i1, j) - t[i1] * C(i2, j)) -
+                          (ha[i1] * absC(i2, j) + ha[i2] * absC(i1, j)) -
+                          (hb[j1] * absC(i, j2) + hb[j2] * absC(i, j1))) /
+                         length;
       if (sep > bestEdge) bestEdge = sep, edgeI = i, edgeJ = j;
     }
+  }
   if (std::max({bestA, bestB, bestEdge}) > margin) return false;  // separated beyond the margin
 
   const double bestFace = std::max(bestA, bestB);

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <vector>
 
 namespace coulomb::geometry {
 namespace {
@@ -31,6 +33,53 @@ TEST(BoxContacts, BoxOnBoxGivesTheFourCornersInTheFirstStep) {
   for (double x : {-0.5, 0.5})
     for (double y : {-0.5, 0.5}) EXPECT_TRUE(hasPoint(out, {x, y, 0.4995}));
   for (const auto& p : out.points) EXPECT_NEAR(p.depth, 0.001, kTol);
+}
+
+// The separating-axis decision against the 15 axes' separations computed in the world frame
+// (|axis . d| - the two projected radii): random sizes, orientations and offsets straddling
+// contact. Beyond the margin along some axis there is no contact; clearly overlapping boxes
+// (every axis at least 1 mm deep) always give one, with a unit normal from A toward B.
+TEST(BoxContacts, SeparatingAxisDecisionMatchesTheWorldFrameAxes) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), size(0.05, 0.6);
+  int separated = 0, overlapping = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Box a{Eigen::Vector3d(size(rng), size(rng), size(rng))};
+    const Box b{Eigen::Vector3d(size(rng), size(rng), size(rng))};
+    const Eigen::Vector3d axis(unit(rng), unit(rng), unit(rng));
+    const Eigen::Vector3d offset = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized() *
+                                   (0.2 + 0.8 * std::abs(unit(rng)));
+    const Pose pa =
+        rotated(Eigen::Vector3d(unit(rng), unit(rng), unit(rng)), 3 * unit(rng), {0, 0, 0});
+    const Pose pb = rotated(axis, 3 * unit(rng), offset);
+    const Eigen::Matrix3d ra = pa.rotationMatrix(), rb = pb.rotationMatrix();
+    auto radius = [](const Box& box, const Eigen::Matrix3d& r, const Eigen::Vector3d& n) {
+      return (r.transpose() * n).cwiseAbs().dot(box.halfExtents);
+    };
+    double worst = -1e300;  // the largest separation over the 15 axes
+    std::vector<Eigen::Vector3d> axes;
+    for (int i = 0; i < 3; ++i) axes.push_back(ra.col(i)), axes.push_back(rb.col(i));
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const Eigen::Vector3d c = ra.col(i).cross(rb.col(j));
+        if (c.norm() > 1e-6) axes.push_back(c.normalized());
+      }
+    for (const Eigen::Vector3d& n : axes)
+      worst = std::max(worst, std::abs(n.dot(offset)) - radius(a, ra, n) - radius(b, rb, n));
+    PairContact out;
+    const bool touching = boxBox(a, pa, b, pb, kMargin, out);
+    if (worst > kMargin + 1e-9) {
+      ++separated;
+      EXPECT_FALSE(touching) << "trial " << trial << ": separated by " << worst;
+    } else if (worst < -1e-3) {
+      ++overlapping;
+      ASSERT_TRUE(touching) << "trial " << trial << ": overlapping by " << -worst;
+      EXPECT_NEAR(out.normal.norm(), 1.0, 1e-12);
+      EXPECT_GE(out.normal.dot(offset), -1e-12) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(separated, 500);
+  EXPECT_GT(overlapping, 500);
 }
 
 TEST(BoxContacts, NormalPointsFromAToBWhicheverIsOnTop) {
