@@ -52,24 +52,31 @@ solvers::BlockSparseMatrix normalNormalBlock(const VelocityProblemNormals& norma
       std::vector<int>(contacts, 1), std::move(rowStart), std::move(columns), std::move(values));
 }
 
+bool penetratesBeyondSlop(std::span<const joints::RowBlock> contactBlocks,
+                          const std::vector<geometry::ContactManifold>& manifolds,
+                          const PenetrationSettings& settings) {
+  if (settings.method != PenetrationMethod::SplitImpulse) return false;
+  return std::any_of(contactBlocks.begin(), contactBlocks.end(), [&](const joints::RowBlock& b) {
+    const geometry::ContactPoint& point =
+        manifolds[contactManifold(b.sourceKey)].points[contactPoint(b.sourceKey)];
+    return point.depth - settings.slop > 0.0;
+  });
+}
+
 std::optional<solvers::SolverReport> correctPenetration(
     std::span<const joints::RowBlock> contactBlocks,
     const std::vector<geometry::ContactManifold>& manifolds, const PenetrationSettings& settings,
     double h, geometry::BodyState& state, const solvers::ContactSolver& solver,
     ArticulationStage* articulations, const VelocityProblemNormals* velocityProblem,
     const solvers::SolverOptions& sweep) {
-  if (settings.method != PenetrationMethod::SplitImpulse) return std::nullopt;
   // Nothing beyond the slop: nothing to build (the common case of a resting stack).
+  if (!penetratesBeyondSlop(contactBlocks, manifolds, settings)) return std::nullopt;
   auto pseudoVelocityTarget = [&](const joints::RowBlock& block) {
     const geometry::ContactPoint& point =
         manifolds[contactManifold(block.sourceKey)].points[contactPoint(block.sourceKey)];
     const double excess = point.depth - settings.slop;
     return excess > 0.0 ? -settings.beta * excess / h : 0.0;
   };
-  const bool anyPenetration =
-      std::any_of(contactBlocks.begin(), contactBlocks.end(),
-                  [&](const joints::RowBlock& b) { return pseudoVelocityTarget(b) < 0.0; });
-  if (!anyPenetration) return std::nullopt;
   joints::RowSet normals;
   normals.blocks.reserve(contactBlocks.size());
   for (const joints::RowBlock& block : contactBlocks) {

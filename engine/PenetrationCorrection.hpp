@@ -36,6 +36,12 @@ struct VelocityProblemNormals {
 /// W_NN of the contacts as a block-sparse matrix of 1-row blocks (columns ascending).
 solvers::BlockSparseMatrix normalNormalBlock(const VelocityProblemNormals& normals);
 
+/// Whether the split impulse has work: a contact deeper than the slop (correctPenetration
+/// returns nullopt otherwise). Lets the step skip setting up the pseudo-solve on a resting island.
+[[nodiscard]] bool penetratesBeyondSlop(std::span<const joints::RowBlock> contactBlocks,
+                                        const std::vector<geometry::ContactManifold>& manifolds,
+                                        const PenetrationSettings& settings);
+
 /// Split impulse: moves the island's dynamic bodies out of penetration (positions and
 /// orientations only), given the contact blocks of the step (their sourceKey names the manifold
 /// point whose depth is read). `solver` solves the pseudo problem (PenetrationSettings::solver).

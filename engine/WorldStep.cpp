@@ -274,11 +274,17 @@ void World::correctPenetrations() {
 }
 
 void World::correctPenetrations(IslandWork& island) {
+  const joints::BlockRange contacts = island.blocks[kContactRows];
+  if (!penetratesBeyondSlop(island.rows.in(contacts), collision_.cache().manifolds(),
+                            settings_.contact.penetration)) {
+    island.penetration.reset();  // what correctPenetration reports for nothing to do
+    island.penetrationSeconds = 0.0;
+    return;
+  }
   const solvers::ContactSolver* solver =
       island.solvers.get(settings_.contact.penetration.solver, registry_);
   if (solver == nullptr) return;  // validated at construction; a registry only grows
   const auto started = std::chrono::steady_clock::now();
-  const joints::BlockRange contacts = island.blocks[kContactRows];
   VelocityProblemNormals& normals = island.penetrationNormals;  // kept for its storage
   normals.W = island.assembled.problem.W;
   normals.normalRows.clear();

@@ -91,8 +91,8 @@ class BodySpaceDelassus {
   /// contacts' normal rows for the split impulse: W' = W restricted to those rows and columns.
   [[nodiscard]] BodySpaceDelassus selectRows(const std::vector<int>& rows) const;
   /// Every number of the set sides finite (unset sides are not read): one pass over the set
-  /// sides, kept until a side is set again (validate() asks on every solve; a check per side as
-  /// it is set cost twice that pass on a resting pyramid).
+  /// sides, kept until a side is set again. (validate() reads W's diagonal instead, which every
+  /// number of the factors enters.)
   [[nodiscard]] bool allFinite() const;
   /// W with every nonzero block (k, j) of blocks sharing a body, cached after the first call.
   [[nodiscard]] const BlockSparseMatrix& toBlockSparse() const;
