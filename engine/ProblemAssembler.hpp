@@ -70,6 +70,9 @@ struct AssemblyScratch {
   std::shared_ptr<solvers::BodySpaceDelassus> bodySpace;
   DelassusBlocks treeBlocks;  // the articulations' part of W
   TreeRowMap trees;           // the trees the rows touch, for W and then the impulses
+  // J v_k as the rows are assembled; swapped into ContactProblem::arrivalRows when it is given
+  // there and back at the next assembly, so that an island that has none frees no storage.
+  Eigen::VectorXd arrivalRows;
 };
 
 struct AssembledProblem {

@@ -97,6 +97,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   Eigen::VectorXd &u = work.u, &dv = work.dv, &r = work.r;
   r.setZero(n);
   work.stepQ.resize(n);  // sized with the others: its first use in a steady step allocates nothing
+  work.arrived.resize(n);
   double eAbsolute = 0.0;  // e's absolute value (PreparedProblem::recordEnd)
   double e = prepared.residual(r, u, dv, &eAbsolute);
   // Projected onto the constraint set, kept when its residual is at most `e` (or below it).
@@ -147,19 +148,28 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // the rows' velocities at the step's start, J v_k, are what a solve within the tolerance leaves
   // behind (at most the tolerance of the common residual): larger ones are motion the bodies
   // arrived with (an impact, a throw), whose impulse is part of the answer's physics. Formed
-  // when a start is computed (O(rows)).
+  // when a start is computed (O(rows)): from the bodies' velocities with a body-space W, else
+  // given per row (ContactProblem::arrivalRows). The same rule gives a converged solver's steady
+  // answer (steadyAnswer).
   bool stepQKnown = false;
   const Eigen::VectorXd* stepQ = nullptr;
+  const Eigen::VectorXd* arrived = nullptr;  // J v_k, when stepQ is known
+  Eigen::VectorXd& arrivedQ = work.stepQ;
   auto stepQForStart = [&]() -> const Eigen::VectorXd* {
     if (stepQKnown) return stepQ;
     stepQKnown = true;
-    if (!warm || factors == nullptr || problem.arrival.size() != 6 * factors->bodyCount())
+    if (!warm) return stepQ;
+    if (factors != nullptr && problem.arrival.size() == 6 * factors->bodyCount()) {
+      work.arrived.setZero(n);
+      factors->addRowVelocities(problem.arrival, work.arrived.data());
+      arrived = &work.arrived;
+    } else if (factors == nullptr && problem.arrivalRows.size() == n) {
+      arrived = &problem.arrivalRows;
+    } else {
       return stepQ;
-    Eigen::VectorXd& arrivedQ = work.stepQ;
-    arrivedQ.setZero(n);
-    factors->addRowVelocities(problem.arrival, arrivedQ.data());
-    if (plainNorm(arrivedQ) > options.tolerance * (1.0 + prepared.qNorm)) return stepQ;
-    arrivedQ = problem.q - arrivedQ;
+    }
+    if (plainNorm(*arrived) > options.tolerance * (1.0 + prepared.qNorm)) return stepQ;
+    arrivedQ = problem.q - *arrived;
     return stepQ = &arrivedQ;
   };
   bool answerIsStickingStart = false;  // r is stick.start(), projected
@@ -174,7 +184,9 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   Eigen::VectorXd& r0 = work.r0;
   r0 = r;
   // The algorithm from r (whose residual is e and body velocities dv), within `runOptions`.
+  bool solverRan = false;
   auto runFrom = [&](const SolverOptions& runOptions) {
+    solverRan = true;
     prepared.start.known = true;
     prepared.start.r = r;
     prepared.start.dv = dv;
@@ -265,6 +277,26 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
         runFrom(options);
         report.iterations += used;
       }
+    }
+  }
+  // The steady answer of a converged solve, kept as the next warm start: the answer holds the
+  // load and also removes the velocity error the bodies arrived with (within the tolerance), a
+  // one-off that a warm start repeated at the next step would put back with the opposite sign,
+  // so that accepted warm starts and Newton iterations alternated on resting islands
+  // (docs/solvers.md "Steady warm start").
+  // Not after a start sweep: one more sweep on q - J v_k is not exact, and a warm start that
+  // leaves an error near the tolerance lets the bodies creep by it, step after step, where an
+  // answer that removes the arrival errors stops them every few steps (docs/solvers.md).
+  const bool steadyWanted = solverRan && report.status == SolverStatus::Converged &&
+                            !answerIsStickingStart && prepared.scale.size() == 0 &&
+                            prepared.end.isOf(r);
+  if (steadyWanted && stepQForStart() != nullptr) {
+    Eigen::VectorXd &uShifted = work.us, &steady = work.s;
+    uShifted = prepared.end.u - *arrived;
+    if (steadyAnswer(prepared, r, uShifted, steady)) {
+      prepared.project(steady);
+      out.nextWarmStart = steady;
+      out.hasNextWarmStart = true;
     }
   }
   prepared.toOriginal(r, out.impulses);

@@ -57,6 +57,17 @@ class ContactSolver {
   // is computed for them beyond the warm start and r = 0, and their one answer is measured once,
   // by the common residual (also their native residual: solvePrepared leaves both to solve()).
   [[nodiscard]] virtual bool ignoresStart() const { return false; }
+  // For a converged answer r (prepared variables, unscaled problem) whose u = W r + q is known:
+  // the answer of the same problem with u shifted to `uShifted` (q - J v_k: the step's load
+  // without the one-off removal of the velocity error the last step left), when the solver can
+  // give it at little cost: Newton takes one step with the factors of its last iteration. False
+  // when it cannot. Kept as the next step's warm start (docs/solvers.md "Steady warm start").
+  [[nodiscard]] virtual bool steadyAnswer(const PreparedProblem& /*problem*/,
+                                          const Eigen::VectorXd& /*r*/,
+                                          const Eigen::VectorXd& /*uShifted*/,
+                                          Eigen::VectorXd& /*out*/) const {
+    return false;
+  }
 
   [[nodiscard]] SolveOutcome solve(const ContactProblem& problem,
                                    const SolverOptions& options = {}) const;
@@ -82,7 +93,7 @@ class ContactSolver {
     Eigen::VectorXd u, dv, r, s, dvs, r0;
     Eigen::VectorXd rs, us;  // the start in original variables and its u (never worse than it)
     StickingStart sticking;  // SolverOptions::stickingStart, unless a workspace is lent
-    Eigen::VectorXd stepQ;   // q - J v_k (ContactProblem::arrival)
+    Eigen::VectorXd arrived, stepQ;  // J v_k and q - J v_k (ContactProblem::arrival)
   };
   void run(const ContactProblem& problem, const SolverOptions& options,
            const Eigen::VectorXd* start, SolveOutcome& out, Workspace& work) const;

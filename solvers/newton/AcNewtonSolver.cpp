@@ -80,7 +80,8 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
 void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext& context,
                                    Eigen::VectorXd& r, SolverReport& report) const {
   const int budget = context.maxIterations(options_.newton.defaultMaxIterations);
-  if (options_.hybridSweeps > 0) {  // hybrid start (a): a few bgs sweeps
+  workspace_.factoredFor = nullptr;  // a solve that runs no Newton step leaves no factors
+  if (options_.hybridSweeps > 0) {   // hybrid start (a): a few bgs sweeps
     SolverOptions gsOptions = context.options();
     gsOptions.maxIterations = options_.hybridSweeps;
     gsOptions.recordHistory = false;
@@ -154,6 +155,12 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
       report.iterations < budget && !report.timeLimitReached)
     proximalLoop(p, function, options_, context, budget - report.iterations, r, report, workspace_,
                  proximal_);
+}
+
+bool AcNewtonSolver::steadyAnswer(const PreparedProblem& p, const Eigen::VectorXd& r,
+                                  const Eigen::VectorXd& uShifted, Eigen::VectorXd& out) const {
+  const AlartCurnierFunction function(options_.radius);
+  return newtonStepWithKeptFactors(p, function, workspace_, r, uShifted, out);
 }
 
 }  // namespace coulomb::solvers

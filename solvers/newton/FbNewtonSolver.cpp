@@ -20,4 +20,10 @@ void FbNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
   }
 }
 
+bool FbNewtonSolver::steadyAnswer(const PreparedProblem& p, const Eigen::VectorXd& r,
+                                  const Eigen::VectorXd& uShifted, Eigen::VectorXd& out) const {
+  const FischerBurmeisterFunction function;
+  return newtonStepWithKeptFactors(p, function, workspace_, r, uShifted, out);
+}
+
 }  // namespace coulomb::solvers

@@ -29,6 +29,10 @@ class FbNewtonSolver final : public ContactSolver {
   [[nodiscard]] const FbNewtonOptions& options() const { return options_; }
   void solvePrepared(const PreparedProblem& problem, const SolveContext& context,
                      Eigen::VectorXd& r, SolverReport& report) const override;
+  // One Newton step with the factors of the last iteration (newtonStepWithKeptFactors).
+  [[nodiscard]] bool steadyAnswer(const PreparedProblem& problem, const Eigen::VectorXd& r,
+                                  const Eigen::VectorXd& uShifted,
+                                  Eigen::VectorXd& out) const override;
 
  private:
   FbNewtonOptions options_;

@@ -178,6 +178,8 @@ bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vec
   auto check = check_.head(m);
   double err = 0;
   const double n = W.size();
+  factored_ = Factored::None;  // until this factorization succeeds
+  factoredRows_ = m;
   if (m <= denseThreshold_ || W.nonZeros() > maxSparseDensity_ * n * n) {
     ++stats_.denseSolves;
     if (dense_.rows() < m) {  // sized to the problem (up to the threshold): |R| varies below it
@@ -251,13 +253,16 @@ bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vec
     check.noalias() = J * x;
     check -= rhs;
     err = check.norm();
+    factored_ = Factored::Dense;
   } else {
     stats_.lastReusedPattern = samePattern(W, kept);
     if (!stats_.lastReusedPattern) buildPattern(W, offset, kept, index);
     fillSparse(W, offset, jac, index, sigma);
     ++stats_.sparseSolves;
+    factored_ = Factored::None;
     lu_->factorize(J_);
     if (lu_->info() != Eigen::Success) return false;
+    factored_ = Factored::Sparse;
     x = lu_->solve(rhs);
     if (lu_->info() != Eigen::Success || !x.allFinite()) return false;
     check.noalias() = J_ * x;
@@ -265,6 +270,35 @@ bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vec
     err = check.norm();
   }
   return err <= 1e-8 * rhs.norm();
+}
+
+bool NewtonLinearSolver::solveAgain(const Eigen::VectorXd& rhsIn, Eigen::VectorXd& xOut) {
+  const int m = factoredRows_;
+  if (factored_ == Factored::None || rhsIn.size() < m || xOut.size() < m) return false;
+  const auto rhs = rhsIn.head(m);
+  auto x = xOut.head(m);
+  auto check = check_.head(m);
+  if (factored_ == Factored::Dense) {
+    using Block = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+    const Block J(dense_.data(), m, m, Eigen::OuterStride<>(dense_.rows()));
+    const Block lu(denseLu_.data(), m, m, Eigen::OuterStride<>(denseLu_.rows()));
+    x = rhs;
+    for (int i = 0; i < m; ++i) std::swap(x[i], x[transpositions_[static_cast<std::size_t>(i)]]);
+    if (m <= kUnblockedLuSize) {
+      luSolveInPlace(lu.data(), lu.outerStride(), m, x.data());
+    } else {
+      lu.triangularView<Eigen::UnitLower>().solveInPlace(x);
+      lu.triangularView<Eigen::Upper>().solveInPlace(x);
+    }
+    if (!x.allFinite()) return false;
+    check.noalias() = J * x;
+  } else {
+    x = lu_->solve(rhs);
+    if (lu_->info() != Eigen::Success || !x.allFinite()) return false;
+    check.noalias() = J_ * x;
+  }
+  check -= rhs;
+  return check.norm() <= 1e-8 * rhs.norm();
 }
 
 }  // namespace coulomb::solvers

@@ -60,6 +60,11 @@ class NewtonLinearSolver {
                     const std::vector<int>& index, double sigma, const Eigen::VectorXd& rhs,
                     Eigen::VectorXd& x);
 
+  // J_RR x = rhs with the factors of the last successful solveLeading (no new factorization), on
+  // the leading |R| entries as there; false when there are none or x is not accurate. For a
+  // second right-hand side of the same Jacobian (NewtonWorkspace::factoredFor).
+  bool solveAgain(const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
+
   [[nodiscard]] const NewtonLinearStats& stats() const { return stats_; }
   [[nodiscard]] int denseThreshold() const { return denseThreshold_; }
 
@@ -88,6 +93,10 @@ class NewtonLinearSolver {
   // of the storage), the row transpositions, so that a new |R| reallocates nothing.
   Eigen::MatrixXd dense_, denseLu_;
   std::vector<int> transpositions_;
+  // What the last successful solveLeading factored: |R| and the path (0: none).
+  enum class Factored { None, Dense, Sparse };
+  Factored factored_ = Factored::None;
+  int factoredRows_ = 0;
   Eigen::VectorXd check_;  // J_RR x - rhs
 };
 

@@ -18,15 +18,19 @@ namespace {
 // Phi and the blocks of A and B of every block of the problem.
 class NewtonSystem {
  public:
-  NewtonSystem(const PreparedProblem& p, const NewtonFunction& f, const NewtonSettings& s,
-               NewtonWorkspace& work)
+  // Kept: rho and the Jacobian as the workspace holds them (newtonStepWithKeptFactors).
+  NewtonSystem(const PreparedProblem& p, const NewtonFunction& f, NewtonWorkspace& work)
       : p_(p),
         f_(f),
         work_(work),
         rhoN_(work.rhoN),
         rhoT_(work.rhoT),
         jac_(work.jac),
-        linear_(work.linear) {
+        linear_(work.linear) {}
+
+  NewtonSystem(const PreparedProblem& p, const NewtonFunction& f, const NewtonSettings& s,
+               NewtonWorkspace& work)
+      : NewtonSystem(p, f, work) {
     rhoN_.resize(p.blockCount());
     rhoT_.resize(p.blockCount());
     jac_.resize(p.blockCount());
@@ -109,18 +113,25 @@ class NewtonSystem {
     return g;
   }
 
-  // Solves J_sigma d = -phi with eliminated unit rows (5.7); false if not accurate.
-  bool solve(const Eigen::VectorXd& phi, double sigma, Eigen::VectorXd& d) {
+  // Solves J_sigma d = -phi with eliminated unit rows (5.7); false if not accurate. With
+  // `refactor` false, the rows kept and the factors of the last solve are reused.
+  bool solve(const Eigen::VectorXd& phi, double sigma, Eigen::VectorXd& d, bool refactor = true) {
     const int n = p_.size();
     std::vector<int>& index = work_.index;
     std::vector<int>& kept = work_.kept;
-    index.assign(n, -1);
-    kept.clear();
-    kept.reserve(n);  // at most n rows kept: sized once, not regrown when R grows
+    if (refactor) {
+      index.assign(n, -1);
+      kept.clear();
+      kept.reserve(n);  // at most n rows kept: sized once, not regrown when R grows
+    }
     d.setZero(n);
     for (int b = 0; b < p_.blockCount(); ++b) {
       const int o = p_.offset[b], s = p_.W.blockSize(b);
       for (int a = 0; a < s; ++a) {
+        if (!refactor) {
+          if (index[o + a] < 0) d[o + a] = -phi[o + a];
+          continue;
+        }
         bool unit = true;
         for (int t = 0; t < s && unit; ++t)
           unit = jac_[b].A(a, t) == 0.0 && jac_[b].B(a, t) == (t == a ? 1.0 : 0.0);
@@ -150,7 +161,9 @@ class NewtonSystem {
     if (x.size() != n) x.resize(n);
     for (int k = 0; k < m; ++k) rhs[k] = -phi[kept[k]] - jd[kept[k]];
     // J_RR = (A (W + sigma I) + B)_RR: dense or sparse LU (NewtonLinearSolver).
-    if (!linear_.solveLeading(p_.W, p_.offset, jac_, kept, index, sigma, rhs, x)) return false;
+    if (refactor ? !linear_.solveLeading(p_.W, p_.offset, jac_, kept, index, sigma, rhs, x)
+                 : !linear_.solveAgain(rhs, x))
+      return false;
     for (int k = 0; k < m; ++k) d[kept[k]] = x[k];
     return true;
   }
@@ -179,6 +192,7 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
   const int n = p.size();
   std::optional<NewtonWorkspace> own;
   NewtonWorkspace& work = workspace != nullptr ? *workspace : own.emplace(s);
+  work.factoredFor = nullptr;  // until a solve of this run factors its Jacobian
   NewtonSystem system(p, function, s, work);
   Eigen::VectorXd &u = work.u, &phi = work.phi, &d = work.d, &wd = work.wd, &jd = work.jd;
   Eigen::VectorXd &trialR = work.trialR, &trialU = work.trialU, &trialPhi = work.trialPhi;
@@ -225,6 +239,8 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
       ok = system.solve(phi, sigma, d);
     }
     report.maxRegularization = std::max(report.maxRegularization, sigma);
+    work.factoredFor = ok ? &p : nullptr;
+    work.factoredSigma = sigma;
     wd.setZero(n);
     if (ok) {
       p.W.multiplyAdd(d, wd);
@@ -335,15 +351,32 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
     }
   }
   report.iterations += k;
-  if (report.status == SolverStatus::Converged)
+  if (report.status == SolverStatus::Converged) {
     p.recordEnd(r, u, e, eAbsolute);  // u = W r + q of the answer, after the last update
-  else
+  } else {
     r = best;
+    work.factoredFor = nullptr;
+  }
   if (steepest > 0) {
     char msg[48];
     std::snprintf(msg, sizeof msg, "%d steepest-descent steps", steepest);
     report.note(msg);
   }
+}
+
+bool newtonStepWithKeptFactors(const PreparedProblem& p, const NewtonFunction& function,
+                               NewtonWorkspace& work, const Eigen::VectorXd& r,
+                               const Eigen::VectorXd& uShifted, Eigen::VectorXd& out) {
+  if (work.factoredFor != &p || r.size() != p.size() || uShifted.size() != p.size()) return false;
+  NewtonSystem system(p, function, work);
+  Eigen::VectorXd &phi = work.trialPhi, &d = work.d;
+  // Phi alone: the workspace's A and B stay those the factors were built from.
+  system.evaluate(r, uShifted, phi, /*withJacobian=*/false);
+  if (!phi.allFinite() || !system.solve(phi, work.factoredSigma, d, /*refactor=*/false) ||
+      !d.allFinite())
+    return false;
+  out = r + d;
+  return true;
 }
 
 }  // namespace coulomb::solvers

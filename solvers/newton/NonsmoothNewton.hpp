@@ -64,6 +64,10 @@ struct NewtonWorkspace {
   std::vector<double> bestHistory;       // best e_rel per iteration (5.12)
   Eigen::VectorXd u, phi, d, wd, jd, trialR, trialU, trialPhi, best;  // the iteration
   Eigen::VectorXd solveWd, solveJd, rhs, x, atphi, gradient;          // inside one step
+  // The problem whose Jacobian (jac, kept, index, sigma) `linear` holds factored after a run that
+  // converged on it, else null: newtonStepWithKeptFactors reuses them.
+  const PreparedProblem* factoredFor = nullptr;
+  double factoredSigma = 0.0;
 };
 
 // `workspace`: null for one made for this call.
@@ -71,5 +75,16 @@ void runNonsmoothNewton(const PreparedProblem& problem, const NewtonFunction& fu
                         const NewtonSettings& settings, const SolveContext& context,
                         int maxIterations, Eigen::VectorXd& r, SolverReport& report,
                         NewtonWorkspace* workspace = nullptr);
+
+// One Newton step from r for the problem with u shifted to `uShifted` (u = W r + q' for another
+// q'), with the Jacobian the converged run on `problem` factored last (no factorization: Phi, a
+// product with W where rows were eliminated, two triangular solves). False when no such factors
+// are kept (workspace.factoredFor != &problem) or the solve is not accurate; else `out` = r + d.
+// For the steady part of a converged answer (ContactSolver::steadyAnswer, docs/solvers.md
+// "Steady warm start"): the Jacobian is that of the last iterate before r, exact where r lies on
+// the same piece of Phi (the same contacts sticking, sliding and open).
+bool newtonStepWithKeptFactors(const PreparedProblem& problem, const NewtonFunction& function,
+                               NewtonWorkspace& workspace, const Eigen::VectorXd& r,
+                               const Eigen::VectorXd& uShifted, Eigen::VectorXd& out);
 
 }  // namespace coulomb::solvers

@@ -2,9 +2,9 @@
 // iteration in steady steps with the start sweep (SolverOptions::startSweep, docs/solvers.md
 // "Start sweep"): its warm start drifts a little past the tolerance every few steps (micro-gaps,
 // docs/benchmarks.md "Why resting bodies still iterate"), and one sweep of exact local answers
-// puts it back within it. Without the sweep the same scenes take a Newton iteration on about one
-// step in two. The accuracy is the solve's either way: every residual within the tolerance (the
-// scenes' analytic answers are checked by `coulomb conformance`).
+// puts it back within it. Without the sweep the same scenes take Newton iterations (on one step in
+// twenty to one in two). The accuracy is the solve's either way: every residual within the
+// tolerance (the scenes' analytic answers are checked by `coulomb conformance`).
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 
@@ -36,7 +36,10 @@ TEST(RestingBoxStart, SteadyStepsNeedNoNewtonIterationWithTheStartSweep) {
         EXPECT_EQ(iterations, 0) << name;
         EXPECT_GT(sweeps, 0) << name;
       } else {
-        EXPECT_GT(iterations, 40) << name;  // measured 57-186 Newton iterations in 200 steps
+        // Measured in 200 steps: A 10, B 133, box_on_plane 7 Newton iterations (57-186 before
+        // the steady warm start, which keeps a resting box's Newton answers from missing the
+        // next step: docs/solvers.md "Steady warm start").
+        EXPECT_GT(iterations, 4) << name;
         EXPECT_EQ(sweeps, 0) << name;
       }
     }

@@ -2,7 +2,7 @@
 // the automatic rules give it to ac_newton) never needs a Newton iteration after its first step:
 // when its warm start misses the tolerance, the all-sticking start is tried before Newton's first
 // iteration and is exact on a tower at rest (docs/solvers.md "Sticking start"). Without the
-// sticking start the same tower takes a Newton iteration on about every other step.
+// sticking start the same tower takes a Newton iteration on about one step in eight.
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
 
@@ -35,7 +35,9 @@ TEST(TowerStart, AStandingTowerNeedsNoNewtonIterationAfterItsFirstStep) {
       EXPECT_EQ(iterations, 0);
       EXPECT_GT(starts, 0);
     } else {
-      EXPECT_GT(iterations, 50);  // measured: about one iteration every other step
+      // Measured: 36 in 299 steps (about one every other step before the steady warm start, which
+      // keeps each Newton answer's load for the next step: docs/solvers.md "Steady warm start").
+      EXPECT_GT(iterations, 10);
       EXPECT_EQ(starts, 0);
     }
   }

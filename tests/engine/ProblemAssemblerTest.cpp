@@ -163,3 +163,43 @@ TEST(ProblemAssembler, WarmStartOnlyWhenEveryBlockHasOne) {
   ASSERT_TRUE(assembled.problem.warmStart.has_value());
   EXPECT_DOUBLE_EQ((*assembled.problem.warmStart)[6], 0.25);
 }
+
+// The rows' velocities at the step's start (ContactProblem::arrivalRows): J v_k of the bodies
+// that carry unknowns, formed for W's entries; a body-space W gets the bodies' v_k instead.
+TEST(ProblemAssembler, ArrivalRowsAreJTimesTheArrivalTwists) {
+  auto state = threeBodies();
+  const auto rows = stackRows(state);
+  std::vector<Eigen::Vector3d> linear = {Eigen::Vector3d(5, 5, 5), Eigen::Vector3d(0.3, -0.2, 0.1),
+                                         Eigen::Vector3d(-0.1, 0.4, 0.2)};
+  std::vector<Eigen::Vector3d> angular = {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(0.5, 0.1, -0.3),
+                                          Eigen::Vector3d(0.2, -0.6, 0.7)};
+  const engine::ArrivalVelocities arrival{linear, angular};
+  Eigen::VectorXd expected = Eigen::VectorXd::Zero(rows.rowCount());
+  int r = 0;
+  for (const auto& b : rows.blocks) {
+    for (const bool sideB : {false, true}) {
+      const std::uint32_t body = (sideB ? b.bodyB : b.bodyA).index;
+      if (!state.isDynamic(body)) continue;  // the ground's v_k is not the rows' (5, 5, 5)
+      Eigen::Matrix<double, 6, 1> twist;
+      twist << linear[body], angular[body];
+      expected.segment(r, b.rows()) += (sideB ? b.jacobianB : b.jacobianA) * twist;
+    }
+    r += b.rows();
+  }
+  engine::AssembledProblem small;
+  engine::ProblemAssembler().assemble(rows, state, nullptr, nullptr, small, &arrival);
+  ASSERT_EQ(small.problem.W.storage(), solvers::DelassusOperator::Storage::BlockSparse);
+  ASSERT_EQ(small.problem.arrivalRows.size(), expected.size());
+  EXPECT_LT((small.problem.arrivalRows - expected).norm(), 1e-14);
+  EXPECT_EQ(small.problem.arrival.size(), 0);
+
+  engine::AssembledProblem factored;
+  engine::ProblemAssembler({.sparseRowLimit = 0})
+      .assemble(rows, state, nullptr, nullptr, factored, &arrival);
+  ASSERT_EQ(factored.problem.W.storage(), solvers::DelassusOperator::Storage::BodySpace);
+  EXPECT_EQ(factored.problem.arrivalRows.size(), 0);
+  EXPECT_EQ(factored.problem.arrival.size(), 12);  // two bodies with unknowns
+
+  engine::ProblemAssembler().assemble(rows, state, nullptr, nullptr, small);  // no arrival
+  EXPECT_EQ(small.problem.arrivalRows.size(), 0);
+}

@@ -1,0 +1,106 @@
+// The steady warm start of a converged solve on an island with W's entries (ContactSolver::
+// steadyAnswer, docs/solvers.md "Steady warm start"): an exact answer also removes the velocity
+// errors the bodies arrived with, a one-off that, kept as the next warm start, makes the next step
+// miss by the same errors reversed. Newton keeps the answer for q - J v_k instead, one step with
+// the factors of its last iteration. Errors beyond the tolerance are motion, not leftovers: no
+// steady warm start then.
+#include <gtest/gtest.h>
+#include <coulomb/solvers/BlockSparseMatrix.hpp>
+#include <coulomb/solvers/ContactProblem.hpp>
+#include <coulomb/solvers/newton/AcNewtonSolver.hpp>
+#include <coulomb/solvers/newton/FbNewtonSolver.hpp>
+
+#include "TowerProblems.hpp"
+
+#include <memory>
+#include <string>
+
+using namespace coulomb::solvers;
+using namespace coulomb::solvers::testing;
+
+namespace {
+
+// The tower of towerArrivingWithErrors with W's entries (block-sparse, as the World's small
+// islands) and the arrival given per row (ContactProblem::arrivalRows), `errors` times the
+// velocity of the tolerance: its warm start misses by twice the errors.
+ContactProblem explicitTowerArrivingWithErrors(int boxes, double errors, double tolerance) {
+  const ContactProblem probe = tower(boxes, 0.5);
+  const double scale = tolerance * (1.0 + probe.q.norm());
+  const double unit = arrivalRowVelocities(towerArrivingWithErrors(boxes, 1.0)).norm();
+  ContactProblem p = towerArrivingWithErrors(boxes, errors * scale / unit);
+  p.arrivalRows = arrivalRowVelocities(p);
+  p.arrival.resize(0);
+  auto W = std::make_shared<BlockSparseMatrix>(p.W.toBlockSparse(p.blockSizes()));
+  p.W = DelassusOperator::blockSparse(W);
+  return p;
+}
+
+// The next step of a resting island, whose bodies arrive at rest (the answer stopped them).
+Eigen::VectorXd nextQ(const ContactProblem& p) {
+  return p.q - p.arrivalRows;
+}
+
+template <class Solver>
+void expectNewtonKeepsTheSteadyAnswer() {
+  const double tolerance = 1e-8;
+  SolverOptions options;
+  options.tolerance = tolerance;
+  const ContactProblem p = explicitTowerArrivingWithErrors(3, 0.3, tolerance);
+  ASSERT_EQ(p.W.bodySpaceOperator(), nullptr);
+  ASSERT_GT(residualFor(p, p.q, *p.warmStart), tolerance);  // the warm start misses
+  const SolveOutcome out = Solver().solve(p, options);
+  ASSERT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_GE(out.report.iterations, 1);
+  ASSERT_TRUE(out.hasNextWarmStart);
+  const double applied = residualFor(p, nextQ(p), out.impulses);
+  const double kept = residualFor(p, nextQ(p), out.nextWarmStart);
+  EXPECT_GT(applied, 0.2 * tolerance);  // the one-off correction, left in the applied answer
+  EXPECT_LT(kept, 1e-3 * tolerance);    // the load alone: the next step accepts it
+  expectFacesCarryTheWeightAbove(out.nextWarmStart, 3);
+
+  const ContactProblem moving = explicitTowerArrivingWithErrors(3, 3.0, tolerance);
+  const SolveOutcome large = Solver().solve(moving, options);
+  ASSERT_EQ(large.report.status, SolverStatus::Converged);
+  EXPECT_FALSE(large.hasNextWarmStart);
+}
+
+}  // namespace
+
+TEST(SteadyWarmStart, AlartCurnierNewtonKeepsTheLoadWithoutTheArrivalErrors) {
+  expectNewtonKeepsTheSteadyAnswer<AcNewtonSolver>();
+}
+
+TEST(SteadyWarmStart, FischerBurmeisterNewtonKeepsTheLoadWithoutTheArrivalErrors) {
+  expectNewtonKeepsTheSteadyAnswer<FbNewtonSolver>();
+}
+
+// Without the rows' arrival velocities there is nothing to remove: the answer is the warm start.
+TEST(SteadyWarmStart, NoArrivalVelocitiesNoSteadyAnswer) {
+  const double tolerance = 1e-8;
+  SolverOptions options;
+  options.tolerance = tolerance;
+  ContactProblem p = explicitTowerArrivingWithErrors(3, 0.3, tolerance);
+  p.arrivalRows.resize(0);
+  const SolveOutcome out = AcNewtonSolver().solve(p, options);
+  ASSERT_EQ(out.report.status, SolverStatus::Converged);
+  EXPECT_GE(out.report.iterations, 1);
+  EXPECT_FALSE(out.hasNextWarmStart);
+}
+
+// A start sweep (SolverOptions::startSweep) that puts the warm start back within the tolerance is
+// the answer and the next warm start: one more sweep on q - J v_k would not be exact, and a warm
+// start that misses by nearly the tolerance, accepted step after step, lets a resting box creep
+// (docs/solvers.md "Steady warm start").
+TEST(SteadyWarmStart, AStartSweepAnswerIsKeptAsItIs) {
+  const double tolerance = 1e-6;
+  SolverOptions options;
+  options.tolerance = tolerance;
+  options.startSweep = true;
+  const ContactProblem p = explicitTowerArrivingWithErrors(1, 0.8, tolerance);
+  ASSERT_GT(residualFor(p, p.q, *p.warmStart), tolerance);
+  const SolveOutcome out = AcNewtonSolver().solve(p, options);
+  ASSERT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_EQ(out.report.iterations, 0);
+  EXPECT_NE(out.report.message.find("start sweep"), std::string::npos) << out.report.message;
+  EXPECT_FALSE(out.hasNextWarmStart);
+}
