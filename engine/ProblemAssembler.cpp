@@ -248,21 +248,6 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
   touches.clear();
   std::vector<Matrix6k>& minvJt = scratch.minvJt;
   minvJt.resize(2 * blockCount);
-  // Equality rows only (a joint island: ldlt forms its 3 x 3 blocks from the factors) keep W
-  // factored at any size; other small islands get W's entries (Newton's dense path needs them).
-  bool equalityOnly = true;
-  for (const joints::RowBlock& b : rows.blocks)
-    equalityOnly = equalityOnly && b.kind == joints::RowKind::Equality;
-  const bool small = size <= settings_.sparseRowLimit && !equalityOnly;
-  // The rows' velocities at the step's start, J v_k, on the bodies that carry unknowns, for an
-  // explicit W (ContactProblem::arrivalRows; a body-space W forms them from `arrival`).
-  const bool withArrivalRows = arrival != nullptr && (small || !settings_.bodySpace) &&
-                               arrival->linear.size() >= state.size() &&
-                               arrival->angular.size() >= state.size();
-  Eigen::VectorXd& arrivalRows = scratch.arrivalRows;
-  if (out.problem.arrivalRows.size() > 0) arrivalRows.swap(out.problem.arrivalRows);
-  out.problem.arrivalRows.resize(0);
-  if (withArrivalRows) arrivalRows.setZero(size);
   for (int k = 0; k < blockCount; ++k) {
     const joints::RowBlock& block = rows.blocks[k];
     joints::RowVector u = block.bias;
@@ -279,15 +264,6 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
              jac.rightCols<3>() * state.angularVelocities[body.index];
       }
       if (!carriesUnknowns(state, body)) continue;
-      if (withArrivalRows) {
-        double* a = arrivalRows.data() + out.slots[k].offset;
-        const double* vk = arrival->linear[body.index].data();
-        const double* wk = arrival->angular[body.index].data();
-        const double* j = jac.data();  // row-major, 6 per row
-        for (int row = 0, rowCount = static_cast<int>(jac.rows()); row < rowCount; ++row, j += 6)
-          a[row] += j[0] * vk[0] + j[1] * vk[1] + j[2] * vk[2] + j[3] * wk[0] + j[4] * wk[1] +
-                    j[5] * wk[2];
-      }
       touches.push_back({body.index, k, sideB});
       inverseMassTimesJacobianT(state, inertias, body.index, jac, minvJt[2 * k + (sideB ? 1 : 0)]);
     }
@@ -337,6 +313,12 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
     out.problem.warmStart.reset();
   }
 
+  // Equality rows only (a joint island: ldlt forms its 3 x 3 blocks from the factors) keep W
+  // factored at any size; other small islands get W's entries (Newton's dense path needs them).
+  bool equalityOnly = true;
+  for (const joints::RowBlock& b : rows.blocks)
+    equalityOnly = equalityOnly && b.kind == joints::RowKind::Equality;
+  const bool small = size <= settings_.sparseRowLimit && !equalityOnly;
   if (!small && treeBlocks.empty() && settings_.bodySpace) {
     // Large islands of free bodies: W stays factored (J, M^-1 J^T per side; BodySpaceDelassus),
     // O(rows) to build; Gauss-Seidel never forms W, other solvers build it once on demand.
@@ -380,8 +362,6 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
     return;
   }
   out.problem.arrival.resize(0);  // used with a body-space W only
-  // Not for rows on trees (their links' part of J v_k is not formed).
-  if (withArrivalRows && treeBlocks.empty()) out.problem.arrivalRows.swap(arrivalRows);
 
   bool contactsOnly = treeBlocks.empty();
   for (const joints::RowBlock& b : rows.blocks)
@@ -437,6 +417,26 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
 
   sparse.build(reusable(scratch.sparse));
   out.problem.W = solvers::DelassusOperator::blockSparse(scratch.sparse);
+}
+
+void arrivalRowVelocities(const joints::RowSet& rows, const geometry::BodyState& state,
+                          const ArrivalVelocities& arrival, const std::vector<RowBlockSlot>& slots,
+                          Eigen::VectorXd& out) {
+  int size = 0;
+  for (const RowBlockSlot& slot : slots) size += slot.rows;
+  out.setZero(size);
+  if (arrival.linear.size() < state.size() || arrival.angular.size() < state.size()) return;
+  for (std::size_t k = 0; k < rows.blocks.size() && k < slots.size(); ++k) {
+    const joints::RowBlock& block = rows.blocks[k];
+    for (const bool sideB : {false, true}) {
+      const geometry::BodyId& body = sideB ? block.bodyB : block.bodyA;
+      if (!carriesUnknowns(state, body)) continue;
+      const joints::RowJacobian& jac = sideB ? block.jacobianB : block.jacobianA;
+      out.segment(slots[k].offset, slots[k].rows) +=
+          jac.leftCols<3>() * arrival.linear[body.index] +
+          jac.rightCols<3>() * arrival.angular[body.index];
+    }
+  }
 }
 
 }  // namespace coulomb::engine

@@ -70,9 +70,6 @@ struct AssemblyScratch {
   std::shared_ptr<solvers::BodySpaceDelassus> bodySpace;
   DelassusBlocks treeBlocks;  // the articulations' part of W
   TreeRowMap trees;           // the trees the rows touch, for W and then the impulses
-  // J v_k as the rows are assembled; swapped into ContactProblem::arrivalRows when it is given
-  // there and back at the next assembly, so that an island that has none frees no storage.
-  Eigen::VectorXd arrivalRows;
 };
 
 struct AssembledProblem {
@@ -114,5 +111,13 @@ class ProblemAssembler {
  private:
   AssemblySettings settings_;
 };
+
+/// The rows' velocities at the step's start, J v_k, on the bodies that carry unknowns (a
+/// body-space W forms the same from ContactProblem::arrival): for an assembled problem with W's
+/// entries, when its solve asks (solvers::ArrivalRowVelocities). Rows on tree links get only
+/// their free bodies' part.
+void arrivalRowVelocities(const joints::RowSet& rows, const geometry::BodyState& state,
+                          const ArrivalVelocities& arrival, const std::vector<RowBlockSlot>& slots,
+                          Eigen::VectorXd& out);
 
 }  // namespace coulomb::engine

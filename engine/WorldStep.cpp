@@ -195,6 +195,26 @@ void World::emitRows(IslandWork& island) {
   }
 }
 
+namespace {
+
+// The island's J v_k, formed when its solve asks (solvers::ArrivalRowVelocities).
+class IslandArrivalRows final : public solvers::ArrivalRowVelocities {
+ public:
+  IslandArrivalRows(const IslandWork& island, const geometry::BodyState& state,
+                    const ArrivalVelocities& arrival)
+      : island_(island), state_(state), arrival_(arrival) {}
+  void form(Eigen::VectorXd& out) const override {
+    arrivalRowVelocities(island_.rows, state_, arrival_, island_.assembled.slots, out);
+  }
+
+ private:
+  const IslandWork& island_;
+  const geometry::BodyState& state_;
+  const ArrivalVelocities& arrival_;
+};
+
+}  // namespace
+
 void World::solveIsland(IslandWork& island) {
   const ArrivalVelocities arrival{step_.startLinearVelocities, step_.startAngularVelocities};
   ProblemAssembler(settings_.assembly)
@@ -208,7 +228,14 @@ void World::solveIsland(IslandWork& island) {
               island.plan);
   if (island.automaticPlan) promotion_.apply(island.island, settings_.solve.promotion, island.plan);
   island.plan.options.parallel = sweepOptions().parallel;
+  // J v_k on demand (a converged solve's steady warm start) for W's entries; not for rows on
+  // trees, whose links' part the assembler does not form.
+  const IslandArrivalRows arrivalRows(island, state_, arrival);
+  const bool lend =
+      problem.W.bodySpaceOperator() == nullptr && island.assembled.scratch.treeBlocks.empty();
+  island.plan.options.arrivalRows = lend ? &arrivalRows : nullptr;
   solvers::solveWithFallback(problem, island.plan, registry_, island.solvers, island.outcome);
+  island.plan.options.arrivalRows = nullptr;  // lent for this solve only
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);
 }

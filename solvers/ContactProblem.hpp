@@ -67,9 +67,6 @@ struct ContactProblem {
   // its tolerance, which an exact answer removes once and which a warm start must not repeat
   // (SolveOutcome::nextWarmStart).
   Eigen::VectorXd arrival;
-  // Empty, or size() with an explicit W: the same rows' velocities J v_k, formed by the assembler
-  // (which holds J) since such a W keeps no factors to form them from.
-  Eigen::VectorXd arrivalRows;
 
   // A pure contact problem (fc3d): n contacts with coefficients mu.
   static ContactProblem contacts(DelassusOperator W, Eigen::VectorXd q,

@@ -148,8 +148,8 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // the rows' velocities at the step's start, J v_k, are what a solve within the tolerance leaves
   // behind (at most the tolerance of the common residual): larger ones are motion the bodies
   // arrived with (an impact, a throw), whose impulse is part of the answer's physics. Formed
-  // when a start is computed (O(rows)): from the bodies' velocities with a body-space W, else
-  // given per row (ContactProblem::arrivalRows). The same rule gives a converged solver's steady
+  // when a start is computed (O(rows)): from the bodies' velocities with a body-space W, else by
+  // the caller (SolverOptions::arrivalRows). The same rule gives a converged solver's steady
   // answer (steadyAnswer).
   bool stepQKnown = false;
   const Eigen::VectorXd* stepQ = nullptr;
@@ -163,8 +163,10 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
       work.arrived.setZero(n);
       factors->addRowVelocities(problem.arrival, work.arrived.data());
       arrived = &work.arrived;
-    } else if (factors == nullptr && problem.arrivalRows.size() == n) {
-      arrived = &problem.arrivalRows;
+    } else if (factors == nullptr && options.arrivalRows != nullptr) {
+      options.arrivalRows->form(work.arrived);
+      if (work.arrived.size() != n) return stepQ;
+      arrived = &work.arrived;
     } else {
       return stepQ;
     }

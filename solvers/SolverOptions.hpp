@@ -6,6 +6,8 @@
 // field).
 #include <coulomb/solvers/ParallelLoop.hpp>
 
+#include <Eigen/Core>
+
 #include <limits>
 #include <optional>
 #include <string>
@@ -13,6 +15,15 @@
 namespace coulomb::solvers {
 
 class StickingStart;
+
+// Forms the rows' velocities at the step's start, J v_k (problem.size() entries), for a problem
+// whose W has its entries: the caller holds J (a body-space W forms them itself from
+// ContactProblem::arrival). Asked only by a converged solve's steady warm start.
+class ArrivalRowVelocities {
+ public:
+  virtual ~ArrivalRowVelocities() = default;
+  virtual void form(Eigen::VectorXd& out) const = 0;
+};
 
 struct SolverOptions {
   // [-] Target of the common relative residual e_rel (docs/solver-derivations.md (1.8)). Default
@@ -79,6 +90,9 @@ struct SolverOptions {
   // carries over from the step that computed it to the solver instance that needs it next; not
   // saved, not compared). Null: the solver's own.
   StickingStart* stickingWorkspace = nullptr;
+  // J v_k on demand, lent by the caller for this solve (the World, for its islands with W's
+  // entries and no trees; not saved, not compared). Null: none, so no steady warm start there.
+  const ArrivalRowVelocities* arrivalRows = nullptr;
 };
 
 // The first invalid field, or nullopt.

@@ -14,51 +14,66 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 
 using namespace coulomb::solvers;
 using namespace coulomb::solvers::testing;
 
 namespace {
 
+// J v_k given by the caller (SolverOptions::arrivalRows), as the World lends its islands'.
+class GivenArrivalRows final : public ArrivalRowVelocities {
+ public:
+  explicit GivenArrivalRows(Eigen::VectorXd rows) : rows_(std::move(rows)) {}
+  void form(Eigen::VectorXd& out) const override { out = rows_; }
+
+ private:
+  Eigen::VectorXd rows_;
+};
+
 // The tower of towerArrivingWithErrors with W's entries (block-sparse, as the World's small
-// islands) and the arrival given per row (ContactProblem::arrivalRows), `errors` times the
-// velocity of the tolerance: its warm start misses by twice the errors.
-ContactProblem explicitTowerArrivingWithErrors(int boxes, double errors, double tolerance) {
+// islands), `errors` times the velocity of the tolerance: its warm start misses by twice the
+// errors. `arrived`: its J v_k.
+ContactProblem explicitTowerArrivingWithErrors(int boxes, double errors, double tolerance,
+                                               Eigen::VectorXd& arrived) {
   const ContactProblem probe = tower(boxes, 0.5);
   const double scale = tolerance * (1.0 + probe.q.norm());
   const double unit = arrivalRowVelocities(towerArrivingWithErrors(boxes, 1.0)).norm();
   ContactProblem p = towerArrivingWithErrors(boxes, errors * scale / unit);
-  p.arrivalRows = arrivalRowVelocities(p);
+  arrived = arrivalRowVelocities(p);
   p.arrival.resize(0);
   auto W = std::make_shared<BlockSparseMatrix>(p.W.toBlockSparse(p.blockSizes()));
   p.W = DelassusOperator::blockSparse(W);
   return p;
 }
 
-// The next step of a resting island, whose bodies arrive at rest (the answer stopped them).
-Eigen::VectorXd nextQ(const ContactProblem& p) {
-  return p.q - p.arrivalRows;
-}
-
 template <class Solver>
 void expectNewtonKeepsTheSteadyAnswer() {
   const double tolerance = 1e-8;
+  Eigen::VectorXd arrived;
+  const ContactProblem p = explicitTowerArrivingWithErrors(3, 0.3, tolerance, arrived);
+  const GivenArrivalRows given(arrived);
   SolverOptions options;
   options.tolerance = tolerance;
-  const ContactProblem p = explicitTowerArrivingWithErrors(3, 0.3, tolerance);
+  options.arrivalRows = &given;
   ASSERT_EQ(p.W.bodySpaceOperator(), nullptr);
   ASSERT_GT(residualFor(p, p.q, *p.warmStart), tolerance);  // the warm start misses
   const SolveOutcome out = Solver().solve(p, options);
   ASSERT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
   EXPECT_GE(out.report.iterations, 1);
   ASSERT_TRUE(out.hasNextWarmStart);
-  const double applied = residualFor(p, nextQ(p), out.impulses);
-  const double kept = residualFor(p, nextQ(p), out.nextWarmStart);
+  // The next step of the resting island, whose bodies arrive at rest (the answer stopped them).
+  const Eigen::VectorXd nextQ = p.q - arrived;
+  const double applied = residualFor(p, nextQ, out.impulses);
+  const double kept = residualFor(p, nextQ, out.nextWarmStart);
   EXPECT_GT(applied, 0.2 * tolerance);  // the one-off correction, left in the applied answer
   EXPECT_LT(kept, 1e-3 * tolerance);    // the load alone: the next step accepts it
   expectFacesCarryTheWeightAbove(out.nextWarmStart, 3);
 
-  const ContactProblem moving = explicitTowerArrivingWithErrors(3, 3.0, tolerance);
+  Eigen::VectorXd fast;
+  const ContactProblem moving = explicitTowerArrivingWithErrors(3, 3.0, tolerance, fast);
+  const GivenArrivalRows givenFast(fast);
+  options.arrivalRows = &givenFast;
   const SolveOutcome large = Solver().solve(moving, options);
   ASSERT_EQ(large.report.status, SolverStatus::Converged);
   EXPECT_FALSE(large.hasNextWarmStart);
@@ -74,13 +89,14 @@ TEST(SteadyWarmStart, FischerBurmeisterNewtonKeepsTheLoadWithoutTheArrivalErrors
   expectNewtonKeepsTheSteadyAnswer<FbNewtonSolver>();
 }
 
-// Without the rows' arrival velocities there is nothing to remove: the answer is the warm start.
+// Without the rows' arrival velocities (no SolverOptions::arrivalRows for W's entries, as for a
+// captured problem) nothing is removed: the answer is the next warm start.
 TEST(SteadyWarmStart, NoArrivalVelocitiesNoSteadyAnswer) {
   const double tolerance = 1e-8;
   SolverOptions options;
   options.tolerance = tolerance;
-  ContactProblem p = explicitTowerArrivingWithErrors(3, 0.3, tolerance);
-  p.arrivalRows.resize(0);
+  Eigen::VectorXd arrived;
+  const ContactProblem p = explicitTowerArrivingWithErrors(3, 0.3, tolerance, arrived);
   const SolveOutcome out = AcNewtonSolver().solve(p, options);
   ASSERT_EQ(out.report.status, SolverStatus::Converged);
   EXPECT_GE(out.report.iterations, 1);
@@ -93,10 +109,13 @@ TEST(SteadyWarmStart, NoArrivalVelocitiesNoSteadyAnswer) {
 // (docs/solvers.md "Steady warm start").
 TEST(SteadyWarmStart, AStartSweepAnswerIsKeptAsItIs) {
   const double tolerance = 1e-6;
+  Eigen::VectorXd arrived;
+  const ContactProblem p = explicitTowerArrivingWithErrors(1, 0.8, tolerance, arrived);
+  const GivenArrivalRows given(arrived);
   SolverOptions options;
   options.tolerance = tolerance;
   options.startSweep = true;
-  const ContactProblem p = explicitTowerArrivingWithErrors(1, 0.8, tolerance);
+  options.arrivalRows = &given;
   ASSERT_GT(residualFor(p, p.q, *p.warmStart), tolerance);
   const SolveOutcome out = AcNewtonSolver().solve(p, options);
   ASSERT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
