@@ -100,23 +100,24 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   work.arrived.resize(n);
   double eAbsolute = 0.0;  // e's absolute value (PreparedProblem::recordEnd)
   double e = prepared.residual(r, u, dv, &eAbsolute);
-  // Projected onto the constraint set, kept when its residual is at most `e` (or below it).
-  auto tryStart = [&](const Eigen::VectorXd& candidate, bool tieKeeps) {
-    Eigen::VectorXd& s = work.s;
-    prepared.fromOriginal(candidate, s);
-    prepared.project(s);
-    Eigen::VectorXd &dvs = work.dvs, &us = work.us;
+  // work.s (prepared variables) becomes r when its residual is below `e` (or at it).
+  auto keepIfBetter = [&](bool tieKeeps) {
+    Eigen::VectorXd &s = work.s, &dvs = work.dvs, &us = work.us;
     double esAbsolute = 0.0;
     const double es = prepared.residual(s, us, dvs, &esAbsolute);
-    if (es < e || (tieKeeps && es == e)) {
-      r = s;
-      e = es;
-      eAbsolute = esAbsolute;
-      dv.swap(dvs);
-      u.swap(us);
-      return true;
-    }
-    return false;
+    if (!(es < e || (tieKeeps && es == e))) return false;
+    r.swap(s);
+    e = es;
+    eAbsolute = esAbsolute;
+    dv.swap(dvs);
+    u.swap(us);
+    return true;
+  };
+  // Projected onto the constraint set, kept when its residual is at most `e` (or below it).
+  auto tryStart = [&](const Eigen::VectorXd& candidate, bool tieKeeps) {
+    prepared.fromOriginal(candidate, work.s);
+    prepared.project(work.s);
+    return keepIfBetter(tieKeeps);
   };
   const Eigen::VectorXd* warm =
       options.useWarmStart && problem.warmStart ? &*problem.warmStart : nullptr;
@@ -216,19 +217,10 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // the residual (then, within the tolerance, it is the answer).
   if (options.startSweep && candidate != nullptr && e > options.tolerance && !worksInBodySpace() &&
       !prepared.bodySpace) {
-    Eigen::VectorXd &s = work.s, &dvs = work.dvs, &us = work.us;
-    s = r;
-    if (sweepContacts(prepared, s)) {
-      double esAbsolute = 0.0;
-      const double es = prepared.residual(s, us, dvs, &esAbsolute);
-      if (es < e) {
-        r.swap(s);
-        e = es;
-        eAbsolute = esAbsolute;
-        u.swap(us);
-        answerIsStickingStart = false;
-        report.note(kStartSweepNote);
-      }
+    work.s = r;
+    if (sweepContacts(prepared, work.s) && keepIfBetter(false)) {
+      answerIsStickingStart = false;
+      report.note(kStartSweepNote);
     }
   }
   if (e <= options.tolerance) {
