@@ -47,15 +47,21 @@ ContactProblem explicitTowerArrivingWithErrors(int boxes, double errors, double 
   return p;
 }
 
+// A solve within `tolerance` to which `arrivalRows` (may be null) is lent.
+SolverOptions lentOptions(double tolerance, const ArrivalRowVelocities* arrivalRows) {
+  SolverOptions options;
+  options.tolerance = tolerance;
+  options.arrivalRows = arrivalRows;
+  return options;
+}
+
 template <class Solver>
 void expectNewtonKeepsTheSteadyAnswer() {
   const double tolerance = 1e-8;
   Eigen::VectorXd arrived;
   const ContactProblem p = explicitTowerArrivingWithErrors(3, 0.3, tolerance, arrived);
   const GivenArrivalRows given(arrived);
-  SolverOptions options;
-  options.tolerance = tolerance;
-  options.arrivalRows = &given;
+  SolverOptions options = lentOptions(tolerance, &given);
   ASSERT_EQ(p.W.bodySpaceOperator(), nullptr);
   ASSERT_GT(residualFor(p, p.q, *p.warmStart), tolerance);  // the warm start misses
   const SolveOutcome out = Solver().solve(p, options);
@@ -93,11 +99,9 @@ TEST(SteadyWarmStart, FischerBurmeisterNewtonKeepsTheLoadWithoutTheArrivalErrors
 // captured problem) nothing is removed: the answer is the next warm start.
 TEST(SteadyWarmStart, NoArrivalVelocitiesNoSteadyAnswer) {
   const double tolerance = 1e-8;
-  SolverOptions options;
-  options.tolerance = tolerance;
   Eigen::VectorXd arrived;
   const ContactProblem p = explicitTowerArrivingWithErrors(3, 0.3, tolerance, arrived);
-  const SolveOutcome out = AcNewtonSolver().solve(p, options);
+  const SolveOutcome out = AcNewtonSolver().solve(p, lentOptions(tolerance, nullptr));
   ASSERT_EQ(out.report.status, SolverStatus::Converged);
   EXPECT_GE(out.report.iterations, 1);
   EXPECT_FALSE(out.hasNextWarmStart);
@@ -112,10 +116,8 @@ TEST(SteadyWarmStart, AStartSweepAnswerIsKeptAsItIs) {
   Eigen::VectorXd arrived;
   const ContactProblem p = explicitTowerArrivingWithErrors(1, 0.8, tolerance, arrived);
   const GivenArrivalRows given(arrived);
-  SolverOptions options;
-  options.tolerance = tolerance;
+  SolverOptions options = lentOptions(tolerance, &given);
   options.startSweep = true;
-  options.arrivalRows = &given;
   ASSERT_GT(residualFor(p, p.q, *p.warmStart), tolerance);
   const SolveOutcome out = AcNewtonSolver().solve(p, options);
   ASSERT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
