@@ -3,12 +3,21 @@
 #include <coulomb/solvers/Residual.hpp>
 #include <coulomb/solvers/StartSweep.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <sstream>
 #include <string_view>
 
 namespace coulomb::solvers {
+namespace {
+
+// A computed answer's residual is taken as at least this, so that an exact one (0) does not make
+// every later warm start look drifted.
+constexpr double kRoundOff = std::numeric_limits<double>::epsilon();
+
+}  // namespace
 
 SolveOutcome ContactSolver::solve(const ContactProblem& problem,
                                   const SolverOptions& options) const {
@@ -175,8 +184,20 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     arrivedQ = problem.q - *arrived;
     return stepQ = &arrivedQ;
   };
+  // A warm start within the tolerance is an answer, but repeated step after step its error
+  // grows: it holds no body against the motion since it was computed, so a stack's tilt grows
+  // geometrically (x1.3 per step on a ten-box column of turned boxes), and at the tolerance the
+  // column is no longer stickable (its least-norm stop leaves the cones) and Newton takes 100+
+  // iterations. An island whose warm start has drifted half-way (in orders of magnitude) from
+  // its last computed answer's residual to the tolerance is started afresh; steady drift (a
+  // straight tower adds its answer's round-off each step) takes sqrt(tolerance / residual)
+  // steps to get there, geometric growth half of its steps to the tolerance (docs/solvers.md
+  // "Sticking start").
+  const bool drifted =
+      warm && options.stickingWorkspace != nullptr &&
+      e > std::sqrt(std::max(stick.answerResidual(), kRoundOff) * options.tolerance);
   bool answerIsStickingStart = false;  // r is stick.start(), projected
-  if (sticking && upFront && e > options.tolerance &&
+  if (sticking && upFront && (e > options.tolerance || drifted) &&
       stick.compute(*factors, problem.q, problem.blocks, warm, stepQForStart()) &&
       tryStart(stick.start(), false)) {
     report.note(kStickingNote);
@@ -315,6 +336,8 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     report.residual = res.relative;
     report.absoluteResidual = res.absolute;
   }
+  if (options.stickingWorkspace != nullptr && (solverRan || answerIsStickingStart))
+    stick.setAnswerResidual(report.residual);
   if (ignoresStart() && report.iterations > 0 && report.status == SolverStatus::Converged) {
     // A direct solve that factorized: its own measure is this one (ignoresStart).
     context.record(report, report.iterations, report.residual);

@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -58,6 +59,12 @@ class StickingStart {
   [[nodiscard]] const Eigen::VectorXd& stepStart() const { return stepStart_; }
   [[nodiscard]] bool hasStepStart() const { return hasStepStart_; }
 
+  /// The common residual of the last answer computed for the island that lends this workspace
+  /// (SolverOptions::stickingWorkspace): a start's or a solver's, not a warm start taken as it
+  /// was; infinity before the first. ContactSolver::run compares a warm start's drift with it.
+  [[nodiscard]] double answerResidual() const { return answerResidual_; }
+  void setAnswerResidual(double residual) { answerResidual_ = residual; }
+
  private:
   // Whether block b is stopped, and its body pair's index in pairs_ (-1: one side or one body).
   // Computed when asked, not stored per block: a steady step allocates nothing even when a new
@@ -67,6 +74,9 @@ class StickingStart {
   void buildPattern(const BodySpaceDelassus& W);
   // P (J's rows) or Q (M^-1 J^T's) into diagonal_ and coupling_, regularized.
   void accumulate(const BodySpaceDelassus& W, bool inverseMassWeighted);
+  // Adds to `out` the start for the row velocities `velocities`, from Q's and P's factors.
+  void startFor(const BodySpaceDelassus& W, const Eigen::VectorXd& velocities,
+                Eigen::VectorXd& out);
 
   const Eigen::VectorXd* q_ = nullptr;  // the problem being started (during compute only)
   const std::vector<ConstraintBlock>* blocks_ = nullptr;
@@ -74,10 +84,11 @@ class StickingStart {
   std::vector<long long> pairs_;              // (higher body, lower body) of coupled bodies, sorted
   std::vector<std::pair<int, int>> pattern_;  // pairs_ as (higher, lower): P and Q's pattern
   std::vector<BlockLdlt::Block> diagonal_, coupling_;  // per body, per pair
-  BlockLdlt ldlt_;
+  BlockLdlt ldltQ_, ldltP_;
   Eigen::VectorXd rhs_, f_, x_, start_, stepStart_;
-  Eigen::VectorXd stepRhs_, stepF_;  // the same for stepQ
+  Eigen::VectorXd u_, dv_;  // the refinement's W r + q and M^-1 J^T r
   bool hasStepStart_ = false;
+  double answerResidual_ = std::numeric_limits<double>::infinity();
   int bodies_ = 0;
 };
 
