@@ -197,11 +197,16 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
       warm && options.stickingWorkspace != nullptr &&
       e > std::sqrt(std::max(stick.answerResidual(), kRoundOff) * options.tolerance);
   bool answerIsStickingStart = false;  // r is stick.start(), projected
-  if (sticking && upFront && (e > options.tolerance || drifted) &&
-      stick.compute(*factors, problem.q, problem.blocks, warm, stepQForStart()) &&
-      tryStart(stick.start(), false)) {
-    report.note(kStickingNote);
-    answerIsStickingStart = true;
+  if (sticking && upFront && (e > options.tolerance || drifted)) {
+    if (stick.compute(*factors, problem.q, problem.blocks, warm, stepQForStart()) &&
+        tryStart(stick.start(), false)) {
+      report.note(kStickingNote);
+      answerIsStickingStart = true;
+    } else if (drifted && e <= options.tolerance && options.stickingWorkspace != nullptr) {
+      // Not stickable (a contact slips or opens): the warm start stays the answer, and the drift
+      // is measured from here, so that the start is not computed again on every step.
+      stick.setAnswerResidual(e);
+    }
   }
   const bool restart =
       sticking && warm && worksInBodySpace() && options.maxIterations > kStickingRestartSweeps;

@@ -19,8 +19,9 @@
 // directions by the stopped rows (stacks, pyramids and piles at rest); a body left free in some
 // direction (a ball on a plane) gets a least-squares approximation, which the residual test may
 // reject. Both matrices get the same small multiple of the identity (kRegularization of their
-// mean diagonal). Two factorizations of one pattern by 6 x 6 blocks (BlockLdlt, analysed once per
-// contact graph), O(bodies) on a stack (pyramid_20's 211 boxes: docs/benchmarks.md).
+// mean diagonal), and one step of iterative refinement with the same factors removes what that
+// costs in accuracy. Two factorizations of one pattern by 6 x 6 blocks (BlockLdlt, analysed once
+// per contact graph), O(bodies) on a stack (pyramid_20's 211 boxes: docs/benchmarks.md).
 #include <coulomb/solvers/BodySpaceDelassus.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
 #include <coulomb/solvers/direct/BlockLdlt.hpp>
@@ -35,10 +36,11 @@ namespace coulomb::solvers {
 
 class StickingStart {
  public:
-  // [-] Added to P and Q's diagonals, relative to their mean diagonal. The start's residual on a
-  // resting stack is about 1e3 times this (P's conditioning grows with the stack's height): 1e-9
-  // to 2e-7 on the towers and pyramids, below the World's tolerance of 1e-6; 1e-10 gave 2e-7 to
-  // 7e-7, 1e-14 left round-off in the bodies' free directions.
+  // [-] Added to P and Q's diagonals, relative to their mean diagonal. The start from the
+  // regularized factors misses the rows' stop by about 1e3 times this on a resting stack (P's
+  // conditioning grows with the stack's height: 1e-9 to 2e-7 on the towers and pyramids), and
+  // compute() takes it to round-off by one step of iterative refinement with the same factors;
+  // 1e-10 left 2e-7 to 7e-7 before the refinement, 1e-14 round-off in the free directions.
   static constexpr double kRegularization = 1e-12;
 
   /// The start r (start(), W.size() entries) from W's factors, q and the blocks (W's partition).
