@@ -3,7 +3,6 @@
 #include <coulomb/solvers/Residual.hpp>
 #include <coulomb/solvers/StartSweep.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -13,8 +12,8 @@
 namespace coulomb::solvers {
 namespace {
 
-// A computed answer's residual is taken as at least this, so that an exact one (0) does not make
-// every later warm start look drifted.
+// The relative residual of an exact answer in double precision (the refined sticking start of a
+// resting tower: 1e-15 to 1e-13).
 constexpr double kRoundOff = std::numeric_limits<double>::epsilon();
 
 }  // namespace
@@ -188,25 +187,19 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // grows: it holds no body against the motion since it was computed, so a stack's tilt grows
   // geometrically (x1.3 per step on a ten-box column of turned boxes), and at the tolerance the
   // column is no longer stickable (its least-norm stop leaves the cones) and Newton takes 100+
-  // iterations. An island whose warm start has drifted half-way (in orders of magnitude) from
-  // its last computed answer's residual to the tolerance is started afresh; steady drift (a
-  // straight tower adds its answer's round-off each step) takes sqrt(tolerance / residual)
-  // steps to get there, geometric growth half of its steps to the tolerance (docs/solvers.md
-  // "Sticking start").
-  const bool drifted =
-      warm && options.stickingWorkspace != nullptr &&
-      e > std::sqrt(std::max(stick.answerResidual(), kRoundOff) * options.tolerance);
+  // iterations. A warm start whose residual is past half-way, in orders of magnitude, from
+  // round-off to the tolerance is started afresh: geometric growth from a refined start gets
+  // there in half its steps to the tolerance, while the column is still stickable; steady drift
+  // (a straight tower adds round-off, 1e-15 per step) in 1e4 steps. A rule on the problem alone,
+  // no memory of earlier solves, so that a run continued from a snapshot stays bit-identical
+  // (docs/solvers.md "Sticking start").
+  const bool drifted = warm && e > std::sqrt(kRoundOff * options.tolerance);
   bool answerIsStickingStart = false;  // r is stick.start(), projected
-  if (sticking && upFront && (e > options.tolerance || drifted)) {
-    if (stick.compute(*factors, problem.q, problem.blocks, warm, stepQForStart()) &&
-        tryStart(stick.start(), false)) {
-      report.note(kStickingNote);
-      answerIsStickingStart = true;
-    } else if (drifted && e <= options.tolerance && options.stickingWorkspace != nullptr) {
-      // Not stickable (a contact slips or opens): the warm start stays the answer, and the drift
-      // is measured from here, so that the start is not computed again on every step.
-      stick.setAnswerResidual(e);
-    }
+  if (sticking && upFront && (e > options.tolerance || drifted) &&
+      stick.compute(*factors, problem.q, problem.blocks, warm, stepQForStart()) &&
+      tryStart(stick.start(), false)) {
+    report.note(kStickingNote);
+    answerIsStickingStart = true;
   }
   const bool restart =
       sticking && warm && worksInBodySpace() && options.maxIterations > kStickingRestartSweeps;
@@ -341,8 +334,6 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     report.residual = res.relative;
     report.absoluteResidual = res.absolute;
   }
-  if (options.stickingWorkspace != nullptr && (solverRan || answerIsStickingStart))
-    stick.setAnswerResidual(report.residual);
   if (ignoresStart() && report.iterations > 0 && report.status == SolverStatus::Converged) {
     // A direct solve that factorized: its own measure is this one (ignoresStart).
     context.record(report, report.iterations, report.residual);

@@ -28,7 +28,6 @@
 
 #include <Eigen/Core>
 
-#include <limits>
 #include <utility>
 #include <vector>
 
@@ -61,12 +60,6 @@ class StickingStart {
   [[nodiscard]] const Eigen::VectorXd& stepStart() const { return stepStart_; }
   [[nodiscard]] bool hasStepStart() const { return hasStepStart_; }
 
-  /// The common residual of the last answer computed for the island that lends this workspace
-  /// (SolverOptions::stickingWorkspace): a start's or a solver's, not a warm start taken as it
-  /// was; infinity before the first. ContactSolver::run compares a warm start's drift with it.
-  [[nodiscard]] double answerResidual() const { return answerResidual_; }
-  void setAnswerResidual(double residual) { answerResidual_ = residual; }
-
  private:
   // Whether block b is stopped, and its body pair's index in pairs_ (-1: one side or one body).
   // Computed when asked, not stored per block: a steady step allocates nothing even when a new
@@ -90,7 +83,6 @@ class StickingStart {
   Eigen::VectorXd rhs_, f_, x_, start_, stepStart_;
   Eigen::VectorXd u_, dv_;  // the refinement's W r + q and M^-1 J^T r
   bool hasStepStart_ = false;
-  double answerResidual_ = std::numeric_limits<double>::infinity();
   int bodies_ = 0;
 };
 

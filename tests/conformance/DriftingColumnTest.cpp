@@ -3,8 +3,8 @@
 // taken as it is holds no box against the motion since it was computed: on this column its
 // residual grows x1.3 per step, and by the time it reaches the tolerance the column is no longer
 // stickable (its least-norm stop leaves the cones), so Newton took 100-500 iterations every
-// 10-20 steps (7 273 in steps 100-600). Started afresh once the warm start has drifted half-way
-// (in orders of magnitude) from the last computed answer to the tolerance, it needs none
+// 10-20 steps (7 273 in steps 100-600). Started afresh once the warm start's residual is past
+// half-way (in orders of magnitude) from round-off to the tolerance, it needs none
 // (docs/solvers.md "Sticking start").
 #include <gtest/gtest.h>
 #include <coulomb/engine/World.hpp>
@@ -37,7 +37,7 @@ TEST(DriftingColumn, ARestingColumnOfTurnedBoxesIsStuckAgainBeforeItDrifts) {
     for (const solvers::SolverReport& attempt : island.attempts) iterations += attempt.iterations;
     if (island.solve.message.find("sticking start") != std::string::npos) ++starts;
   }
-  // Measured: 0 iterations, 22 fresh starts (one every 23 steps), the largest residual 4.6e-11,
+  // Measured: 0 iterations, 25 fresh starts (one every 20 steps), the largest residual 1.5e-11,
   // the boxes still within 1e-12 m of where they were at step 100.
   EXPECT_LE(iterations, 50);
   EXPECT_GT(starts, 5);
