@@ -123,8 +123,7 @@ bool StickingStart::compute(const BodySpaceDelassus& W, const Eigen::VectorXd& q
   auto startOf = [&](const Eigen::VectorXd& velocities, Eigen::VectorXd& out) {
     startFor(W, velocities, out);
     u_ = velocities;
-    W.bodyVelocities(out, dv_);
-    W.addRowVelocities(dv_, u_.data());  // u = W r + velocities
+    W.multiplyAdd(out, u_);  // u = W r + velocities
     startFor(W, u_, out);
   };
   startOf(q, r);

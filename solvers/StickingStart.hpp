@@ -81,7 +81,7 @@ class StickingStart {
   std::vector<BlockLdlt::Block> diagonal_, coupling_;  // per body, per pair
   BlockLdlt ldltQ_, ldltP_;
   Eigen::VectorXd rhs_, f_, x_, start_, stepStart_;
-  Eigen::VectorXd u_, dv_;  // the refinement's W r + q and M^-1 J^T r
+  Eigen::VectorXd u_;  // the refinement's W r + q
   bool hasStepStart_ = false;
   int bodies_ = 0;
 };

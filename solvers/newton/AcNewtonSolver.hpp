@@ -13,7 +13,8 @@ namespace coulomb::solvers {
 struct AcNewtonOptions {
   // rho per contact (5.14), regularization (5.8), line search (5.10), stall test (5.12), dense
   // threshold: see NewtonSettings. Defaults: SPECTRAL rho, sigma in [1e-12, 1e-4] max W_ii,
-  // Goldstein-Price m1 = 0.1, m2 = 0.9, 30 trials, Stalled after 20 iterations without 1 %.
+  // Goldstein-Price m1 = 0.1, m2 = 0.9, 30 trials, watchdog of 10 steps, Stalled after 20
+  // iterations without 1 %.
   NewtonSettings newton;
   // Radius of the friction disk: (5.2a) mu [y_N]_+ (default: AC91 and Siconos' default) or
   // (5.2b) mu r_N.

@@ -12,12 +12,16 @@ namespace coulomb::solvers {
 
 struct FbNewtonOptions {
   // rho per contact (5.14) (SPECTRAL by default), regularization (5.8), stall test (5.12). The
-  // line search defaults to Armijo (5.11) here; Goldstein-Price is available.
+  // line search defaults to Armijo (5.11) here; Goldstein-Price is available. No watchdog: the
+  // Fischer-Burmeister merit is smooth (C^1), so the full steps that raise Alart-Curnier's merit
+  // at its kinks (NewtonSettings::watchdogSteps) are not what stops it (docs/solvers.md
+  // "Watchdog Newton").
   NewtonSettings newton = armijoSettings();
 
   static NewtonSettings armijoSettings() {
     NewtonSettings s;
     s.lineSearch = NewtonSettings::LineSearch::Armijo;
+    s.watchdogSteps = 0;
     return s;
   }
 };

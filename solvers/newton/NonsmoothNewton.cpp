@@ -210,6 +210,13 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
   std::vector<double>& bestHistory = work.bestHistory;
   bestHistory.reserve(static_cast<std::size_t>(std::max(maxIterations, 0)) + 1);  // no regrowth
   bestHistory.assign(1, bestE);
+  // Watchdog (NewtonSettings::watchdogSteps): the point the relaxed full steps started from.
+  const int watchdogSteps = s.watchdogSteps;
+  const bool watchdog = watchdogSteps > 0;
+  Eigen::VectorXd &watchR = work.watchR, &watchU = work.watchU;
+  double watchE = 0.0, watchPsi = 0.0, watchSlope = 0.0;
+  bool setWatch = true, searchNext = false;
+  int relaxed = 0;
   double boost = 1.0;
   int failStreak = 0, steepest = 0;
   const double scaleRho = system.maxRho();
@@ -271,15 +278,44 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
       slope = phi.dot(jd);
       ++steepest;
     }
-    // Goldstein-Price, Algorithm 5.2, or Armijo halving (5.11).
+    // Watchdog (Chamberlain, Powell, Lemarechal and Pedersen, Math. Prog. Study 16, 1982;
+    // docs/solvers.md "Watchdog Newton"): a full step the search would cut (psi rising) is taken
+    // as it is; the iterates must then come below the watchdog point (by armijoC x its slope)
+    // within watchdogSteps steps, each making a new watchdog point, or the iteration returns to
+    // it and takes the monotone search there.
+    if (watchdog && setWatch) {
+      watchR = r;
+      watchU = u;
+      watchE = e;
+      watchPsi = psi0;
+      watchSlope = slope;
+      setWatch = false;
+      relaxed = 0;
+    }
     double alpha = 1.0, lo = 0.0, hi = std::numeric_limits<double>::infinity();
     double bestAlpha = 0.0, bestPsi = psi0;
     bool accepted = false;
-    for (int t = 0; t < s.lineSearchTrials; ++t) {
-      trialR = r + alpha * d;
-      trialU = u + alpha * wd;
+    double fullStepPsi = std::numeric_limits<double>::quiet_NaN(), stepPsi = psi0;
+    const bool tryFullStep = watchdog && !searchNext;
+    if (tryFullStep) {
+      trialR = r + d;
+      trialU = u + wd;
       system.evaluate(trialR, trialU, trialPhi, false);
-      const double psi = 0.5 * trialPhi.squaredNorm();
+      fullStepPsi = 0.5 * trialPhi.squaredNorm();
+      if (fullStepPsi - psi0 > s.m1 * slope) {  // too long for the search: taken as it is
+        accepted = true;
+        stepPsi = fullStepPsi;
+      }
+    }
+    // Goldstein-Price, Algorithm 5.2, or Armijo halving (5.11), from alpha = 1.
+    for (int t = 0; t < s.lineSearchTrials && !accepted; ++t) {
+      if (t > 0 || !tryFullStep) {
+        trialR = r + alpha * d;
+        trialU = u + alpha * wd;
+        system.evaluate(trialR, trialU, trialPhi, false);
+      }
+      const double psi = t == 0 && tryFullStep ? fullStepPsi : 0.5 * trialPhi.squaredNorm();
+      stepPsi = psi;
       if (psi < bestPsi) bestPsi = psi, bestAlpha = alpha;
       const double avg = (psi - psi0) / alpha;
       if (armijo) {
@@ -302,6 +338,7 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
     }
     if (!accepted) {
       ++report.lineSearchFailures;
+      if (bestAlpha > 0) stepPsi = bestPsi;
       alpha = bestAlpha > 0 ? bestAlpha : alpha;
       if (++failStreak >= 3) {
         boost *= 100.0;
@@ -309,6 +346,18 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
       }
     } else {
       failStreak = 0;
+    }
+    if (watchdog) {
+      if (searchNext || stepPsi <= watchPsi + s.armijoC * watchSlope) {
+        searchNext = false;  // progress (or the search from the watchdog point): a new one
+        setWatch = true;
+      } else if (++relaxed > watchdogSteps) {  // none in watchdogSteps steps: back, and search
+        r = watchR;
+        u = watchU;
+        e = watchE;
+        searchNext = true;
+        continue;
+      }
     }
     const double stepNorm = alpha * d.norm();
     r += alpha * d;
