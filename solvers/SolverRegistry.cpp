@@ -42,7 +42,8 @@ SolverRegistry SolverRegistry::builtIn() {
   r.add({"bgs_nncg", "bgs sweeps with the same momentum: piles and stacks from a cold start",
          variant<BgsSolver, BgsOptions>([](BgsOptions& o) { o.conjugateGradient = true; })});
   r.add({"ac_newton",
-         "Alart-Curnier nonsmooth Newton, Goldstein-Price search, regularized sparse LU "
+         "Alart-Curnier nonsmooth Newton, Goldstein-Price search with a watchdog, regularized "
+         "sparse LU "
          "(docs/solver-derivations.md 5)",
          [] { return std::make_unique<AcNewtonSolver>(); }});
   r.add({"prox",

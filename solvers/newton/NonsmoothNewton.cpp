@@ -302,7 +302,9 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
       trialU = u + wd;
       system.evaluate(trialR, trialU, trialPhi, false);
       fullStepPsi = 0.5 * trialPhi.squaredNorm();
-      if (fullStepPsi - psi0 > s.m1 * slope) {  // too long for the search: taken as it is
+      // Too long for the search (its acceptance test at alpha = 1 fails on the rising side):
+      // taken as it is.
+      if (fullStepPsi - psi0 > (armijo ? s.armijoC : s.m1) * slope) {
         accepted = true;
         stepPsi = fullStepPsi;
       }

@@ -6,7 +6,6 @@
 
 #include "TestProblems.hpp"
 
-#include <stdexcept>
 #include <string>
 
 using namespace coulomb::solvers;
@@ -14,10 +13,7 @@ using namespace coulomb::solvers;
 namespace {
 
 ContactProblem loadDoubleLoop() {
-  Fc3dReadResult r = readFc3dText(std::string(COULOMB_TEST_DATA_DIR) +
-                                  "/problems/double_loop_step326_island0.fc3d");
-  if (!r.problem) throw std::runtime_error(r.error);
-  return *r.problem;
+  return fixtures::loadCapturedProblem("double_loop_step326_island0");
 }
 
 }  // namespace

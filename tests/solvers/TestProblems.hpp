@@ -96,6 +96,14 @@ inline ContactProblem loadFixture(const std::string& name) {
   return *r.problem;
 }
 
+// A problem captured from one of the engine's scenes (tests/data/problems/ORIGIN.md).
+inline ContactProblem loadCapturedProblem(const std::string& name) {
+  Fc3dReadResult r =
+      readFc3dText(std::string(COULOMB_TEST_DATA_DIR) + "/problems/" + name + ".fc3d");
+  if (!r.problem) throw std::runtime_error(r.error);
+  return *r.problem;
+}
+
 inline const char* const kFixtures[] = {"FrictionContact3D_1c",
                                         "FC3D_Example1",
                                         "GFC3D_Example00_badly_scaled",

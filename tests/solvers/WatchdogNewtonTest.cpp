@@ -7,7 +7,6 @@
 
 #include "TestProblems.hpp"
 
-#include <stdexcept>
 #include <string>
 
 using namespace coulomb::solvers;
@@ -15,10 +14,7 @@ using namespace coulomb::solvers;
 namespace {
 
 ContactProblem loadPileColumn() {
-  Fc3dReadResult r = readFc3dText(std::string(COULOMB_TEST_DATA_DIR) +
-                                  "/problems/box_pile_1000_step60_island92.fc3d");
-  if (!r.problem) throw std::runtime_error(r.error);
-  return *r.problem;
+  return fixtures::loadCapturedProblem("box_pile_1000_step60_island92");
 }
 
 SolveOutcome solveWithWatchdog(const ContactProblem& p, int watchdogSteps) {
@@ -53,11 +49,9 @@ TEST(WatchdogNewton, APileColumnAfterLandingConverges) {
 // iterations, and the heavy box would crush the light one (DegenerateCases). Here it follows the
 // monotone path but for a few relaxed steps near the answer (measured: 31 iterations, monotone 29).
 TEST(WatchdogNewton, LeavesTheSearchItsLongStepsOnAMillionToOneMassRatio) {
-  Fc3dReadResult r = readFc3dText(std::string(COULOMB_TEST_DATA_DIR) +
-                                  "/problems/mass_ratio_1e6_step0_island0.fc3d");
-  ASSERT_TRUE(r.problem) << r.error;
-  const SolveOutcome monotone = solveWithWatchdog(*r.problem, 0);
-  const SolveOutcome watched = solveWithWatchdog(*r.problem, NewtonSettings{}.watchdogSteps);
+  const ContactProblem p = fixtures::loadCapturedProblem("mass_ratio_1e6_step0_island0");
+  const SolveOutcome monotone = solveWithWatchdog(p, 0);
+  const SolveOutcome watched = solveWithWatchdog(p, NewtonSettings{}.watchdogSteps);
   EXPECT_EQ(watched.report.status, SolverStatus::Converged) << watched.report.message;
   EXPECT_EQ(monotone.report.status, SolverStatus::Converged) << monotone.report.message;
   EXPECT_LE(watched.report.iterations, monotone.report.iterations + 10);
