@@ -184,17 +184,127 @@ class NewtonSystem {
   NewtonLinearSolver& linear_;
 };
 
+// The Newton direction at r (u = W r + q): Phi and its Jacobian, d from J_sigma d = -Phi with the
+// residual-scaled shift (5.8), escalated by `boost` after failed searches; the steepest descent on
+// psi where that gives no descent (and, under Armijo, where it is too flat: the Facchinei-Pang
+// safeguard of (5.11)). On success: psi0 = psi(r), slope = Phi . J d < 0, wd = W d.
+struct Direction {
+  double psi0 = 0.0, slope = 0.0;
+};
+
+std::optional<Direction> newtonDirection(NewtonSystem& system, const PreparedProblem& p,
+                                         const NewtonSettings& s, double e, double boost,
+                                         double scaleRho, NewtonWorkspace& work,
+                                         const Eigen::VectorXd& r, SolverReport& report,
+                                         int& steepest) {
+  const int n = p.size();
+  Eigen::VectorXd &u = work.u, &phi = work.phi, &d = work.d, &wd = work.wd, &jd = work.jd;
+  system.evaluate(r, u, phi, true);
+  if (!phi.allFinite()) {
+    report.status = SolverStatus::NumericalFailure;
+    report.note("non-finite Phi");
+    return std::nullopt;
+  }
+  report.nativeResidual = phi.norm() / (r.norm() + scaleRho * p.qNorm + 1e-300);
+  Direction out;
+  out.psi0 = 0.5 * phi.squaredNorm();
+  double sigma = std::clamp(e, s.minShift, s.maxShift) * p.maxDiagonal * boost;
+  if (s.maxShift <= 0) sigma = 0;
+  bool ok = system.solve(phi, sigma, d);
+  if (!ok) {
+    sigma = std::max(sigma, 1e-10 * p.maxDiagonal) * 100.0;
+    ok = system.solve(phi, sigma, d);
+  }
+  report.maxRegularization = std::max(report.maxRegularization, sigma);
+  work.factoredFor = ok ? &p : nullptr;
+  work.factoredSigma = sigma;
+  const auto steepestDescent = [&] {
+    d = -system.gradient(phi);
+    wd.setZero(n);
+    p.W.multiplyAdd(d, wd);
+    system.applyAB(wd, d, jd);
+    out.slope = phi.dot(jd);
+    ++steepest;
+  };
+  wd.setZero(n);
+  if (ok) {
+    p.W.multiplyAdd(d, wd);
+    system.applyAB(wd, d, jd);
+    out.slope = phi.dot(jd);
+  }
+  if (!ok || !(out.slope < 0) || !d.allFinite()) {
+    steepestDescent();
+    if (!(out.slope < 0)) {
+      report.status = SolverStatus::Stalled;
+      report.note("no descent direction");
+      return std::nullopt;
+    }
+  }
+  if (s.lineSearch == NewtonSettings::LineSearch::Armijo &&
+      out.slope > -1e-8 * std::pow(d.norm(), 2.1))
+    steepestDescent();
+  return out;
+}
+
+// The search along d from r: Goldstein-Price (Algorithm 5.2) or Armijo halving (5.11), from
+// alpha = 1, whose psi is `fullStepPsi` when the watchdog evaluated it already (NaN otherwise).
+// Not accepted: the best alpha tried (or the last) and its psi.
+struct SearchResult {
+  double alpha = 1.0, psi = 0.0;
+  bool accepted = false;
+};
+
+SearchResult lineSearch(NewtonSystem& system, const NewtonSettings& s, NewtonWorkspace& work,
+                        const Eigen::VectorXd& r, const Direction& at, double fullStepPsi) {
+  const Eigen::VectorXd &u = work.u, &d = work.d, &wd = work.wd;
+  Eigen::VectorXd &trialR = work.trialR, &trialU = work.trialU, &trialPhi = work.trialPhi;
+  const bool armijo = s.lineSearch == NewtonSettings::LineSearch::Armijo;
+  SearchResult out;
+  double lo = 0.0, hi = std::numeric_limits<double>::infinity();
+  double bestAlpha = 0.0, bestPsi = at.psi0;
+  for (int t = 0; t < s.lineSearchTrials; ++t) {
+    double psi = fullStepPsi;
+    if (t > 0 || std::isnan(fullStepPsi)) {
+      trialR = r + out.alpha * d;
+      trialU = u + out.alpha * wd;
+      system.evaluate(trialR, trialU, trialPhi, false);
+      psi = 0.5 * trialPhi.squaredNorm();
+    }
+    out.psi = psi;
+    if (psi < bestPsi) bestPsi = psi, bestAlpha = out.alpha;
+    if (armijo) {
+      if (psi <= at.psi0 + s.armijoC * out.alpha * at.slope) {
+        out.accepted = true;
+        return out;
+      }
+      out.alpha *= 0.5;
+      continue;
+    }
+    const double avg = (psi - at.psi0) / out.alpha;
+    if (avg < s.m2 * at.slope) {
+      lo = out.alpha;
+    } else if (avg > s.m1 * at.slope) {
+      hi = out.alpha;
+    } else {
+      out.accepted = true;
+      return out;
+    }
+    out.alpha = std::isfinite(hi) ? 0.5 * (lo + hi) : 10.0 * out.alpha;
+  }
+  if (bestAlpha > 0) out.alpha = bestAlpha, out.psi = bestPsi;
+  return out;
+}
+
 }  // namespace
 
 void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function,
                         const NewtonSettings& s, const SolveContext& context, int maxIterations,
                         Eigen::VectorXd& r, SolverReport& report, NewtonWorkspace* workspace) {
-  const int n = p.size();
   std::optional<NewtonWorkspace> own;
   NewtonWorkspace& work = workspace != nullptr ? *workspace : own.emplace(s);
   work.factoredFor = nullptr;  // until a solve of this run factors its Jacobian
   NewtonSystem system(p, function, s, work);
-  Eigen::VectorXd &u = work.u, &phi = work.phi, &d = work.d, &wd = work.wd, &jd = work.jd;
+  Eigen::VectorXd &u = work.u, &d = work.d, &wd = work.wd;
   Eigen::VectorXd &trialR = work.trialR, &trialU = work.trialU, &trialPhi = work.trialPhi;
   double e = 0.0, eAbsolute = 0.0;  // the common residual of r (relative, absolute)
   if (p.startEvaluatedAs(r)) {      // ContactSolver's start: its residual and u are known
@@ -210,15 +320,17 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
   std::vector<double>& bestHistory = work.bestHistory;
   bestHistory.reserve(static_cast<std::size_t>(std::max(maxIterations, 0)) + 1);  // no regrowth
   bestHistory.assign(1, bestE);
-  // Watchdog (NewtonSettings::watchdogSteps): the point the relaxed full steps started from.
-  const int watchdogSteps = s.watchdogSteps;
-  const bool watchdog = watchdogSteps > 0;
+  // Watchdog (NewtonSettings::watchdogSteps): the point the relaxed full steps started from, with
+  // its direction, which the search takes from there on a return.
+  const bool watchdog = s.watchdogSteps > 0;
   Eigen::VectorXd &watchR = work.watchR, &watchU = work.watchU;
-  double watchE = 0.0, watchPsi = 0.0, watchSlope = 0.0;
+  Eigen::VectorXd &watchD = work.watchD, &watchWd = work.watchWd;
+  double watchE = 0.0;
+  Direction watch;
   bool setWatch = true, searchNext = false;
   int relaxed = 0;
   double boost = 1.0;
-  int failStreak = 0, steepest = 0;
+  int failStreak = 0, steepest = 0, returns = 0;
   const double scaleRho = system.maxRho();
   report.nativeResidualName = "e_Phi = ||Phi|| / (||r|| + max rho ||q||) (5.13)";
   report.status = SolverStatus::MaxIterations;
@@ -229,54 +341,17 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
       break;
     }
     if (context.timeUp(report)) break;
-    system.evaluate(r, u, phi, true);
-    if (!phi.allFinite()) {
-      report.status = SolverStatus::NumericalFailure;
-      report.note("non-finite Phi");
+    Direction at;
+    if (searchNext) {  // back at the watchdog point: its direction again
+      at = watch;
+      d = watchD;
+      wd = watchWd;
+      work.factoredFor = nullptr;  // the factors are of a later iterate
+    } else if (const std::optional<Direction> found =
+                   newtonDirection(system, p, s, e, boost, scaleRho, work, r, report, steepest)) {
+      at = *found;
+    } else {
       break;
-    }
-    report.nativeResidual = phi.norm() / (r.norm() + scaleRho * p.qNorm + 1e-300);
-    const double psi0 = 0.5 * phi.squaredNorm();
-    // (5.8) residual-scaled shift, escalated by x100 after failures.
-    double sigma = std::clamp(e, s.minShift, s.maxShift) * p.maxDiagonal * boost;
-    if (s.maxShift <= 0) sigma = 0;
-    bool ok = system.solve(phi, sigma, d);
-    if (!ok) {
-      sigma = std::max(sigma, 1e-10 * p.maxDiagonal) * 100.0;
-      ok = system.solve(phi, sigma, d);
-    }
-    report.maxRegularization = std::max(report.maxRegularization, sigma);
-    work.factoredFor = ok ? &p : nullptr;
-    work.factoredSigma = sigma;
-    wd.setZero(n);
-    if (ok) {
-      p.W.multiplyAdd(d, wd);
-      system.applyAB(wd, d, jd);
-    }
-    double slope = ok ? phi.dot(jd) : 0.0;
-    if (!ok || !(slope < 0) || !d.allFinite()) {  // steepest descent on psi
-      d = -system.gradient(phi);
-      wd.setZero(n);
-      p.W.multiplyAdd(d, wd);
-      system.applyAB(wd, d, jd);
-      slope = phi.dot(jd);
-      ++steepest;
-      if (!(slope < 0)) {
-        report.status = SolverStatus::Stalled;
-        report.note("no descent direction");
-        break;
-      }
-    }
-    // Armijo (5.11): the Facchinei-Pang safeguard replaces a too-flat Newton direction by the
-    // steepest descent before the search.
-    const bool armijo = s.lineSearch == NewtonSettings::LineSearch::Armijo;
-    if (armijo && slope > -1e-8 * std::pow(d.norm(), 2.1)) {
-      d = -system.gradient(phi);
-      wd.setZero(n);
-      p.W.multiplyAdd(d, wd);
-      system.applyAB(wd, d, jd);
-      slope = phi.dot(jd);
-      ++steepest;
     }
     // Watchdog (Chamberlain, Powell, Lemarechal and Pedersen, Math. Prog. Study 16, 1982;
     // docs/solvers.md "Watchdog Newton"): a full step the search would cut (psi rising) is taken
@@ -286,62 +361,29 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
     if (watchdog && setWatch) {
       watchR = r;
       watchU = u;
+      watchD = d;
+      watchWd = wd;
       watchE = e;
-      watchPsi = psi0;
-      watchSlope = slope;
+      watch = at;
       setWatch = false;
       relaxed = 0;
     }
-    double alpha = 1.0, lo = 0.0, hi = std::numeric_limits<double>::infinity();
-    double bestAlpha = 0.0, bestPsi = psi0;
-    bool accepted = false;
-    double fullStepPsi = std::numeric_limits<double>::quiet_NaN(), stepPsi = psi0;
-    const bool tryFullStep = watchdog && !searchNext;
-    if (tryFullStep) {
+    SearchResult step;
+    double fullStepPsi = std::numeric_limits<double>::quiet_NaN();
+    if (watchdog && !searchNext) {
       trialR = r + d;
       trialU = u + wd;
       system.evaluate(trialR, trialU, trialPhi, false);
       fullStepPsi = 0.5 * trialPhi.squaredNorm();
       // Too long for the search (its acceptance test at alpha = 1 fails on the rising side):
       // taken as it is.
-      if (fullStepPsi - psi0 > (armijo ? s.armijoC : s.m1) * slope) {
-        accepted = true;
-        stepPsi = fullStepPsi;
-      }
+      const bool armijo = s.lineSearch == NewtonSettings::LineSearch::Armijo;
+      if (fullStepPsi - at.psi0 > (armijo ? s.armijoC : s.m1) * at.slope)
+        step = {1.0, fullStepPsi, true};
     }
-    // Goldstein-Price, Algorithm 5.2, or Armijo halving (5.11), from alpha = 1.
-    for (int t = 0; t < s.lineSearchTrials && !accepted; ++t) {
-      if (t > 0 || !tryFullStep) {
-        trialR = r + alpha * d;
-        trialU = u + alpha * wd;
-        system.evaluate(trialR, trialU, trialPhi, false);
-      }
-      const double psi = t == 0 && tryFullStep ? fullStepPsi : 0.5 * trialPhi.squaredNorm();
-      stepPsi = psi;
-      if (psi < bestPsi) bestPsi = psi, bestAlpha = alpha;
-      const double avg = (psi - psi0) / alpha;
-      if (armijo) {
-        if (psi <= psi0 + s.armijoC * alpha * slope) {
-          accepted = true;
-          break;
-        }
-        alpha *= 0.5;
-        continue;
-      }
-      if (avg < s.m2 * slope) {
-        lo = alpha;
-      } else if (avg > s.m1 * slope) {
-        hi = alpha;
-      } else {
-        accepted = true;
-        break;
-      }
-      alpha = std::isfinite(hi) ? 0.5 * (lo + hi) : 10.0 * alpha;
-    }
-    if (!accepted) {
+    if (!step.accepted) step = lineSearch(system, s, work, r, at, fullStepPsi);
+    if (!step.accepted) {
       ++report.lineSearchFailures;
-      if (bestAlpha > 0) stepPsi = bestPsi;
-      alpha = bestAlpha > 0 ? bestAlpha : alpha;
       if (++failStreak >= 3) {
         boost *= 100.0;
         failStreak = 0;
@@ -350,19 +392,20 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
       failStreak = 0;
     }
     if (watchdog) {
-      if (searchNext || stepPsi <= watchPsi + s.armijoC * watchSlope) {
+      if (searchNext || step.psi <= watch.psi0 + s.armijoC * watch.slope) {
         searchNext = false;  // progress (or the search from the watchdog point): a new one
         setWatch = true;
-      } else if (++relaxed > watchdogSteps) {  // none in watchdogSteps steps: back, and search
+      } else if (++relaxed > s.watchdogSteps) {  // none in watchdogSteps steps: back, and search
         r = watchR;
         u = watchU;
         e = watchE;
         searchNext = true;
+        ++returns;
         continue;
       }
     }
-    const double stepNorm = alpha * d.norm();
-    r += alpha * d;
+    const double stepNorm = step.alpha * d.norm();
+    r += step.alpha * d;
     e = p.residual(r, u, &eAbsolute);  // u recomputed: measured after the update
     if (!r.allFinite() || !std::isfinite(e)) {
       report.status = SolverStatus::NumericalFailure;
@@ -411,6 +454,11 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
   if (steepest > 0) {
     char msg[48];
     std::snprintf(msg, sizeof msg, "%d steepest-descent steps", steepest);
+    report.note(msg);
+  }
+  if (returns > 0) {
+    char msg[48];
+    std::snprintf(msg, sizeof msg, "%d returns to the watchdog point", returns);
     report.note(msg);
   }
 }

@@ -70,11 +70,11 @@ struct NewtonWorkspace {
   explicit NewtonWorkspace(const NewtonSettings& settings)
       : linear(settings.denseThreshold, settings.sparseMaxDensity) {}
   NewtonLinearSolver linear;
-  std::vector<double> rhoN, rhoT;        // (5.14) per block
-  std::vector<NewtonBlockJacobian> jac;  // A_b, B_b per block
-  std::vector<int> index, kept;          // rows kept after eliminating unit rows (5.7)
-  std::vector<double> bestHistory;       // best e_rel per iteration (5.12)
-  Eigen::VectorXd watchR, watchU;        // the watchdog point and its u (watchdogSteps)
+  std::vector<double> rhoN, rhoT;                   // (5.14) per block
+  std::vector<NewtonBlockJacobian> jac;             // A_b, B_b per block
+  std::vector<int> index, kept;                     // rows kept after eliminating unit rows (5.7)
+  std::vector<double> bestHistory;                  // best e_rel per iteration (5.12)
+  Eigen::VectorXd watchR, watchU, watchD, watchWd;  // the watchdog point: r, u, d, W d
   Eigen::VectorXd u, phi, d, wd, jd, trialR, trialU, trialPhi, best;  // the iteration
   Eigen::VectorXd solveWd, solveJd, rhs, x, atphi, gradient;          // inside one step
   // The problem whose Jacobian (jac, kept, index, sigma) `linear` holds factored after a run that
