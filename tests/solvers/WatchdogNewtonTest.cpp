@@ -4,6 +4,7 @@
 // that do not slip. Fixture: tests/data/problems/ORIGIN.md.
 #include <gtest/gtest.h>
 #include <coulomb/solvers/newton/AcNewtonSolver.hpp>
+#include <coulomb/solvers/newton/NonsmoothNewton.hpp>
 
 #include "TestProblems.hpp"
 
@@ -55,4 +56,26 @@ TEST(WatchdogNewton, LeavesTheSearchItsLongStepsOnAMillionToOneMassRatio) {
   EXPECT_EQ(watched.report.status, SolverStatus::Converged) << watched.report.message;
   EXPECT_EQ(monotone.report.status, SolverStatus::Converged) << monotone.report.message;
   EXPECT_LE(watched.report.iterations, monotone.report.iterations + 10);
+}
+
+// A return to the watchdog point takes the search along the direction kept with the point: no
+// evaluation of the Jacobian and no factorization there, where recomputing them cost one
+// factorization per iteration (measured on this column, plain Newton loop from r = 0 until its
+// stall test: 30 iterations, 2 returns, 28 dense factorizations).
+TEST(WatchdogNewton, AReturnToTheWatchdogPointCostsNoFactorization) {
+  const PreparedProblem p = PreparedProblem::from(loadPileColumn());
+  SolverOptions o;
+  o.tolerance = 1e-8;
+  const SolveContext context(o, SolveContext::Clock::now());
+  const NewtonSettings settings;
+  NewtonWorkspace work(settings);
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(p.size());
+  SolverReport report;
+  runNonsmoothNewton(p, AlartCurnierFunction{}, settings, context, 200, r, report, &work);
+  const std::size_t at = report.message.find(" returns to the watchdog point");
+  ASSERT_NE(at, std::string::npos) << report.message;
+  const int returns = std::stoi(report.message.substr(report.message.rfind(' ', at - 1) + 1));
+  EXPECT_GT(returns, 0);
+  const NewtonLinearStats& stats = work.linear.stats();
+  EXPECT_EQ(stats.denseSolves + stats.sparseSolves + returns, report.iterations) << report.message;
 }
