@@ -125,7 +125,9 @@ void runSolve(const SolveArgs& a) {
               << ",\"contacts\":" << problem.contactCount() << ",\"solver\":" << jsonString(name)
               << ",\"status\":" << jsonString(solvers::statusName(r.status))
               << ",\"iterations\":" << r.iterations << ",\"seconds\":" << jsonNumber(r.seconds)
-              << ",\"residual\":" << jsonNumber(r.residual) << planFields << "}" << std::endl;
+              << ",\"residual\":" << jsonNumber(r.residual) << planFields;
+    if (!r.message.empty()) std::cout << ",\"note\":" << jsonString(r.message);  // as run --stats
+    std::cout << "}" << std::endl;
     if (r.status == solvers::SolverStatus::InvalidProblem)
       throw CommandError(a.file + ": invalid problem: " + r.message);
     if (bestR.size() == 0 || r.residual < bestResidual) {

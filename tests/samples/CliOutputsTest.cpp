@@ -299,6 +299,21 @@ void expectCaptureReplays(const std::string& scene, const fs::path& dir, double 
   EXPECT_NE(solve.output.find("\"status\":\"converged\""), std::string::npos) << solve.output;
 }
 
+// `coulomb solve` says what a solver did, as `run --stats` does for every attempt: a landing
+// column of box_pile_1000 takes ac_newton through returns to its watchdog point (fixture:
+// tests/data/problems/ORIGIN.md).
+TEST_F(CliOutputs, SolveReportsWhatTheSolverDid) {
+  const fs::path file =
+      fs::path(COULOMB_TEST_DATA_DIR) / "problems" / "box_pile_1000_step60_island92.fc3d";
+  const CommandResult r = runCoulomb("solve " + file.string() + " --solver ac_newton!");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json line = nlohmann::json::parse(r.output.substr(0, r.output.find('\n')));
+  EXPECT_EQ(line.at("status"), "converged") << r.output;
+  EXPECT_NE(line.value("note", std::string()).find("returns to the watchdog point"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST_F(CliOutputs, CaptureWritesFc3dThatSolveReadsBack) {
   expectCaptureReplays(writeScene(0.5), dir_, 0.5);
 }
