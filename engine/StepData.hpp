@@ -38,6 +38,7 @@ struct IslandWork {
   // workspaces stay sized to the island found in this slot step after step, so a steady step
   // resizes none of them, and islands never share a solver (independent solves).
   solvers::SolverInstances solvers;
+  std::vector<int> groupScratch;  // solvers::splitsByActingContacts's union-find, kept for storage
   std::optional<solvers::SolverReport> penetration;  // the split impulse's pseudo-solve
   double penetrationSeconds = 0.0;
   VelocityProblemNormals penetrationNormals;  // the split impulse's view of W (kept for storage)

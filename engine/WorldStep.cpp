@@ -8,11 +8,13 @@
 #include <coulomb/engine/World.hpp>
 #include <coulomb/integrators/FreeMotion.hpp>
 #include <coulomb/integrators/PositionUpdate.hpp>
+#include <coulomb/solvers/ActiveGroups.hpp>
 #include <coulomb/solvers/SolverChooser.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace coulomb::engine {
@@ -234,7 +236,19 @@ void World::solveIsland(IslandWork& island) {
   const bool lend =
       problem.W.bodySpaceOperator() == nullptr && island.assembled.scratch.treeBlocks.empty();
   island.plan.options.arrivalRows = lend ? &arrivalRows : nullptr;
-  solvers::solveWithFallback(problem, island.plan, registry_, island.solvers, island.outcome);
+  // An island whose acting contacts form several groups, linked only through contacts that do
+  // not act (separating, or gaps that r = 0 keeps), is solved group by group
+  // (solvers/ActiveGroups.hpp); the whole plan runs when they do not split or the whole residual
+  // misses the tolerance.
+  std::optional<solvers::PlanOutcome> byGroups;
+  if (island.automaticPlan && solvers::splitsByActingContacts(problem, island.groupScratch))
+    byGroups =
+        solvers::solveByActiveGroups(problem, solvers::SolverChooser(settings_.solve.chooser),
+                                     choice, island.plan.options, registry_);
+  if (byGroups)
+    island.outcome = std::move(*byGroups);
+  else
+    solvers::solveWithFallback(problem, island.plan, registry_, island.solvers, island.outcome);
   island.plan.options.arrivalRows = nullptr;  // lent for this solve only
   promotion_.record(island.island, settings_.solve.promotion, island.automaticPlan, island.plan,
                     island.outcome);

@@ -1,0 +1,201 @@
+#include <coulomb/solvers/ActiveGroups.hpp>
+
+#include <coulomb/solvers/BodySpaceDelassus.hpp>
+#include <coulomb/solvers/Residual.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <numeric>
+
+namespace coulomb::solvers {
+namespace {
+
+int findRoot(std::vector<int>& parent, int x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+bool isotropicContactsOnly(const ContactProblem& problem) {
+  return std::all_of(problem.blocks.begin(), problem.blocks.end(),
+                     [](const ConstraintBlock& b) { return b.isContact() && !b.anisotropic; });
+}
+
+bool actsAtStart(const ContactProblem& problem, int b) {  // approaching or resting, or pushed
+  return problem.q[3 * b] <= 0.0 || (problem.warmStart && (*problem.warmStart)[3 * b] > 0.0);
+}
+
+}  // namespace
+
+bool splitsByActingContacts(const ContactProblem& problem, std::vector<int>& parent) {
+  const int blocks = static_cast<int>(problem.blocks.size());
+  if (blocks < 2 || problem.q.size() != 3 * blocks || !isotropicContactsOnly(problem)) return false;
+  // Union-find over what links two contacts: their bodies (body-space W) or W's blocks.
+  const BodySpaceDelassus* body = problem.W.bodySpaceOperator();
+  const BlockSparseMatrix* W = problem.W.blockSparseMatrix();
+  if (body == nullptr && W == nullptr) return false;
+  const int nodes = body != nullptr ? body->bodyCount() : blocks;
+  parent.resize(static_cast<std::size_t>(nodes));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto nodeOf = [&](int b) {  // a node of contact b: a dynamic body of it, or b itself
+    if (body == nullptr) return b;
+    const int b0 = body->blockBody(b, 0);
+    return b0 >= 0 ? b0 : body->blockBody(b, 1);
+  };
+  for (int b = 0; b < blocks; ++b) {
+    if (!actsAtStart(problem, b)) continue;
+    if (body != nullptr) {
+      const int b0 = body->blockBody(b, 0), b1 = body->blockBody(b, 1);
+      if (b0 >= 0 && b1 >= 0) parent[findRoot(parent, b0)] = findRoot(parent, b1);
+    } else {
+      for (int k = W->rowBegin(b); k < W->rowEnd(b); ++k)
+        if (const int c = W->blockColumn(k); c != b && actsAtStart(problem, c))
+          parent[findRoot(parent, b)] = findRoot(parent, c);
+    }
+  }
+  int first = -1;
+  for (int b = 0; b < blocks; ++b) {
+    if (!actsAtStart(problem, b)) continue;
+    const int root = findRoot(parent, nodeOf(b));
+    if (first < 0) first = root;
+    if (root != first) return true;
+  }
+  return false;
+}
+
+ActiveGroups activeGroups(const BlockSparseMatrix& W, const std::vector<char>& acts) {
+  ActiveGroups groups;
+  const int blocks = W.blockCount();
+  std::vector<int> parent(blocks);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int b = 0; b < blocks; ++b) {
+    if (!acts[b]) continue;
+    for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k)
+      if (const int c = W.blockColumn(k); c != b && acts[c])
+        parent[findRoot(parent, b)] = findRoot(parent, c);
+  }
+  groups.groupOfBlock.assign(blocks, -1);
+  std::vector<int> groupOfRoot(blocks, -1), sizes;
+  for (int b = 0; b < blocks; ++b) {
+    if (!acts[b]) continue;
+    int& g = groupOfRoot[findRoot(parent, b)];
+    if (g < 0) {
+      g = groups.count++;
+      sizes.push_back(0);
+    }
+    groups.groupOfBlock[b] = g;
+    ++sizes[g];
+  }
+  groups.largest = sizes.empty() ? 0 : *std::max_element(sizes.begin(), sizes.end());
+  return groups;
+}
+
+ContactProblem groupProblem(const ContactProblem& problem, const BlockSparseMatrix& W,
+                            const ActiveGroups& groups, int group,
+                            const Eigen::VectorXd* warmStart) {
+  std::vector<int> members, local(groups.groupOfBlock.size(), -1);
+  for (int b = 0; b < static_cast<int>(groups.groupOfBlock.size()); ++b)
+    if (groups.groupOfBlock[b] == group) {
+      local[b] = static_cast<int>(members.size());
+      members.push_back(b);
+    }
+  const int n = static_cast<int>(members.size());
+  std::vector<int> rowStart{0}, columns;
+  std::vector<double> values;
+  Eigen::VectorXd q(3 * n);
+  std::vector<double> mu(n);
+  for (int i = 0; i < n; ++i) {
+    const int b = members[i];
+    // W's block rows keep their columns in ascending order, and `local` ascends with b.
+    for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
+      const int c = local[W.blockColumn(k)];
+      if (c < 0) continue;
+      columns.push_back(c);
+      values.insert(values.end(), W.blockValues(k), W.blockValues(k) + 9);
+    }
+    rowStart.push_back(static_cast<int>(columns.size()));
+    q.segment<3>(3 * i) = problem.q.segment<3>(3 * b);
+    mu[i] = problem.blocks[b].mu;
+  }
+  ContactProblem sub = ContactProblem::contacts(
+      DelassusOperator::blockSparse(BlockSparseMatrix::fromBlockCsr(
+          std::vector<int>(n, 3), std::move(rowStart), std::move(columns), std::move(values))),
+      std::move(q), mu, problem.name + "_group" + std::to_string(group));
+  if (warmStart != nullptr) {
+    Eigen::VectorXd warm(3 * n);
+    for (int i = 0; i < n; ++i) warm.segment<3>(3 * i) = warmStart->segment<3>(3 * members[i]);
+    sub.warmStart = std::move(warm);
+  }
+  return sub;
+}
+
+std::optional<PlanOutcome> solveByActiveGroups(const ContactProblem& problem,
+                                               const SolverChooser& chooser,
+                                               const SolverChoice& choice,
+                                               const SolverOptions& options,
+                                               const SolverRegistry& registry, bool* failedCheck) {
+  if (failedCheck) *failedCheck = false;
+  const int blocks = static_cast<int>(problem.blocks.size());
+  if (blocks < 2 || !isotropicContactsOnly(problem)) return std::nullopt;
+  const auto started = std::chrono::steady_clock::now();
+  std::optional<BlockSparseMatrix> converted;
+  const BlockSparseMatrix* W = problem.W.blockSparseMatrix();
+  if (W == nullptr) W = &converted.emplace(problem.W.toBlockSparse(problem.blockSizes()));
+  // The island's lent workspaces are of its size, not a group's.
+  SolverOptions groupOptions = options;
+  groupOptions.stickingWorkspace = nullptr;
+  groupOptions.arrivalRows = nullptr;
+  const Eigen::VectorXd* warm = problem.warmStart ? &*problem.warmStart : nullptr;
+  std::vector<char> acts(blocks);
+  for (int b = 0; b < blocks; ++b) acts[b] = actsAtStart(problem, b);
+  PlanOutcome out;
+  Eigen::VectorXd &r = out.best.impulses, &u = out.best.velocities;
+  r.setZero(problem.size());
+  int iterations = 0, rounds = 0;
+  ActiveGroups groups;
+  for (bool approaching = true; approaching; ++rounds) {
+    groups = activeGroups(*W, acts);
+    if (groups.count < 2) return std::nullopt;  // they do not split (any more)
+    out.attempts.clear();
+    for (int g = 0; g < groups.count; ++g) {
+      const ContactProblem sub = groupProblem(problem, *W, groups, g, rounds == 0 ? warm : &r);
+      const PlanOutcome solved =
+          solveWithFallback(sub, chooser.choose(sub, {}, choice, groupOptions), registry);
+      iterations += solved.iterations();
+      int i = 0;
+      for (int b = 0; b < blocks; ++b)
+        if (groups.groupOfBlock[b] == g)
+          r.segment<3>(3 * b) = solved.best.impulses.segment<3>(3 * i++);
+      out.attempts.insert(out.attempts.end(), solved.attempts.begin(), solved.attempts.end());
+    }
+    problem.W.velocity(r, problem.q, u);
+    approaching = false;  // left-out contacts that the groups drive into approach act too
+    for (int b = 0; b < blocks; ++b)
+      if (!acts[b] && u[3 * b] < 0.0) acts[b] = approaching = true;
+  }
+  const ResidualValue e = commonResidual(problem, r, u);
+  SolverReport& report = out.best.report;
+  report.solver = "groups";
+  report.iterations = iterations;
+  report.residual = e.relative;
+  report.absoluteResidual = e.absolute;
+  report.status =
+      e.relative <= options.tolerance ? SolverStatus::Converged : SolverStatus::MaxIterations;
+  char msg[160];
+  std::snprintf(msg, sizeof msg,
+                "%d groups of acting contacts (largest %d of %d contacts) solved alone, %d rounds",
+                groups.count, groups.largest, blocks, rounds);
+  report.note(msg);
+  report.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  out.seconds = report.seconds;
+  out.status = report.status;
+  if (!report.converged()) {
+    if (failedCheck) *failedCheck = true;
+    return std::nullopt;
+  }
+  out.attempts.insert(out.attempts.begin(), report);  // the whole answer, then the groups'
+  return out;
+}
+
+}  // namespace coulomb::solvers
