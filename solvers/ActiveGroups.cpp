@@ -141,10 +141,12 @@ std::optional<PlanOutcome> solveByActiveGroups(const ContactProblem& problem,
   std::optional<BlockSparseMatrix> converted;
   const BlockSparseMatrix* W = problem.W.blockSparseMatrix();
   if (W == nullptr) W = &converted.emplace(problem.W.toBlockSparse(problem.blockSizes()));
-  // The island's lent workspaces are of its size, not a group's.
+  // The island's lent workspaces are of its size, not a group's; a group is small enough for one
+  // thread (the island's task runs it).
   SolverOptions groupOptions = options;
   groupOptions.stickingWorkspace = nullptr;
   groupOptions.arrivalRows = nullptr;
+  groupOptions.parallel = nullptr;
   const Eigen::VectorXd* warm = problem.warmStart ? &*problem.warmStart : nullptr;
   std::vector<char> acts(blocks);
   for (int b = 0; b < blocks; ++b) acts[b] = actsAtStart(problem, b);
