@@ -22,7 +22,8 @@ bool isotropicContactsOnly(const ContactProblem& problem) {
 }
 
 bool actsAtStart(const ContactProblem& problem, int b) {  // approaching or resting, or pushed
-  return problem.q[3 * b] <= 0.0 || (problem.warmStart && (*problem.warmStart)[3 * b] > 0.0);
+  const bool warm = problem.warmStart && problem.warmStart->size() == problem.q.size();
+  return problem.q[3 * b] <= 0.0 || (warm && (*problem.warmStart)[3 * b] > 0.0);
 }
 
 }  // namespace
@@ -136,7 +137,8 @@ std::optional<PlanOutcome> solveByActiveGroups(const ContactProblem& problem,
                                                const SolverRegistry& registry, bool* failedCheck) {
   if (failedCheck) *failedCheck = false;
   const int blocks = static_cast<int>(problem.blocks.size());
-  if (blocks < 2 || !isotropicContactsOnly(problem)) return std::nullopt;
+  if (blocks < 2 || problem.q.size() != 3 * blocks || !isotropicContactsOnly(problem))
+    return std::nullopt;
   const auto started = std::chrono::steady_clock::now();
   std::optional<BlockSparseMatrix> converted;
   const BlockSparseMatrix* W = problem.W.blockSparseMatrix();
@@ -147,7 +149,9 @@ std::optional<PlanOutcome> solveByActiveGroups(const ContactProblem& problem,
   groupOptions.stickingWorkspace = nullptr;
   groupOptions.arrivalRows = nullptr;
   groupOptions.parallel = nullptr;
-  const Eigen::VectorXd* warm = problem.warmStart ? &*problem.warmStart : nullptr;
+  const Eigen::VectorXd* warm = problem.warmStart && problem.warmStart->size() == problem.q.size()
+                                    ? &*problem.warmStart
+                                    : nullptr;
   std::vector<char> acts(blocks);
   for (int b = 0; b < blocks; ++b) acts[b] = actsAtStart(problem, b);
   PlanOutcome out;
