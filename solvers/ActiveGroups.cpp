@@ -76,6 +76,7 @@ ActiveGroups activeGroups(const BlockSparseMatrix& W, const std::vector<char>& a
         parent[findRoot(parent, b)] = findRoot(parent, c);
   }
   groups.groupOfBlock.assign(blocks, -1);
+  groups.indexInGroup.assign(blocks, -1);
   std::vector<int> groupOfRoot(blocks, -1), sizes;
   for (int b = 0; b < blocks; ++b) {
     if (!acts[b]) continue;
@@ -85,33 +86,35 @@ ActiveGroups activeGroups(const BlockSparseMatrix& W, const std::vector<char>& a
       sizes.push_back(0);
     }
     groups.groupOfBlock[b] = g;
-    ++sizes[g];
+    groups.indexInGroup[b] = sizes[g]++;
   }
   groups.largest = sizes.empty() ? 0 : *std::max_element(sizes.begin(), sizes.end());
+  groups.memberStart.assign(groups.count + 1, 0);
+  for (int g = 0; g < groups.count; ++g)
+    groups.memberStart[g + 1] = groups.memberStart[g] + sizes[g];
+  groups.members.resize(groups.memberStart.back());
+  for (int b = 0; b < blocks; ++b)  // ascending within each group
+    if (const int g = groups.groupOfBlock[b]; g >= 0)
+      groups.members[groups.memberStart[g] + groups.indexInGroup[b]] = b;
   return groups;
 }
 
 ContactProblem groupProblem(const ContactProblem& problem, const BlockSparseMatrix& W,
                             const ActiveGroups& groups, int group,
                             const Eigen::VectorXd* warmStart) {
-  std::vector<int> members, local(groups.groupOfBlock.size(), -1);
-  for (int b = 0; b < static_cast<int>(groups.groupOfBlock.size()); ++b)
-    if (groups.groupOfBlock[b] == group) {
-      local[b] = static_cast<int>(members.size());
-      members.push_back(b);
-    }
-  const int n = static_cast<int>(members.size());
+  const int* members = groups.members.data() + groups.memberStart[group];
+  const int n = groups.memberStart[group + 1] - groups.memberStart[group];
   std::vector<int> rowStart{0}, columns;
   std::vector<double> values;
   Eigen::VectorXd q(3 * n);
   std::vector<double> mu(n);
   for (int i = 0; i < n; ++i) {
     const int b = members[i];
-    // W's block rows keep their columns in ascending order, and `local` ascends with b.
+    // W's block rows keep their columns in ascending order, and indexInGroup ascends with them.
     for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
-      const int c = local[W.blockColumn(k)];
-      if (c < 0) continue;
-      columns.push_back(c);
+      const int column = W.blockColumn(k);
+      if (groups.groupOfBlock[column] != group) continue;
+      columns.push_back(groups.indexInGroup[column]);
       values.insert(values.end(), W.blockValues(k), W.blockValues(k) + 9);
     }
     rowStart.push_back(static_cast<int>(columns.size()));
@@ -168,10 +171,9 @@ std::optional<PlanOutcome> solveByActiveGroups(const ContactProblem& problem,
       const PlanOutcome solved =
           solveWithFallback(sub, chooser.choose(sub, {}, choice, groupOptions), registry);
       iterations += solved.iterations();
-      int i = 0;
-      for (int b = 0; b < blocks; ++b)
-        if (groups.groupOfBlock[b] == g)
-          r.segment<3>(3 * b) = solved.best.impulses.segment<3>(3 * i++);
+      for (int i = groups.memberStart[g]; i < groups.memberStart[g + 1]; ++i)
+        r.segment<3>(3 * groups.members[i]) =
+            solved.best.impulses.segment<3>(3 * (i - groups.memberStart[g]));
       out.attempts.insert(out.attempts.end(), solved.attempts.begin(), solved.attempts.end());
     }
     problem.W.velocity(r, problem.q, u);

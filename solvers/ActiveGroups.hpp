@@ -27,8 +27,11 @@ namespace coulomb::solvers {
 
 struct ActiveGroups {
   std::vector<int> groupOfBlock;  // per block: its group, or -1 (a contact that does not act)
-  int count = 0;                  // groups
-  int largest = 0;                // blocks of the largest group
+  std::vector<int> indexInGroup;  // per block: its position in its group (-1: none)
+  // The blocks of group g, ascending: members[memberStart[g] .. memberStart[g + 1]).
+  std::vector<int> memberStart, members;
+  int count = 0;    // groups
+  int largest = 0;  // blocks of the largest group
 };
 
 // Whether the contacts acting at the start form two groups or more (the test before
