@@ -29,6 +29,7 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
   // the sparse pattern and its symbolic analysis carry over from one subproblem to the next.
   const double tol = context.tolerance();
   int outer = 0, used = 0;
+  bool innerFailed = false;  // a subproblem Newton did not solve: the shift shrinks no more
   while (used < budget && bestE > tol) {
     if (context.timeUp(report)) break;
     ++outer;
@@ -56,10 +57,13 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     e = p.residual(r, u);
     context.record(report, report.iterations + used, e);
     if (e < bestE) bestE = e, best = r;
-    if (innerReport.status == SolverStatus::Converged)
-      sigma = std::min(sigma, 5.0 * e * meanDiag);
-    else
+    if (innerReport.status == SolverStatus::Converged) {
+      const bool quick = innerReport.iterations <= o.proximalQuickInner && !innerFailed;
+      sigma = std::min(quick ? o.proximalShrink * sigma : sigma, 5.0 * e * meanDiag);
+    } else {
       sigma *= 10.0;
+      innerFailed = true;
+    }
     sigma = std::max(sigma, 1e-14 * meanDiag);
   }
   report.iterations += used;

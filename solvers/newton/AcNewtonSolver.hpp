@@ -45,6 +45,16 @@ struct AcNewtonOptions {
   double proximalInitialShift = 1.0;
   // [Newton iterations] cap per proximal subproblem.
   int proximalInnerIterations = 50;
+  // The proximal shift follows the residual (s <= 5 e mean W_ii, Siconos' PROX) and, after a
+  // subproblem that Newton solved within proximalQuickInner iterations, also shrinks by
+  // proximalShrink: the loop gains sigma / (sigma + lambda) per subproblem along an eigenvalue
+  // lambda of W, so a shift that the inner Newton handles easily is larger than it needs to be
+  // (box piles: 40-60 subproblems of 1-2 Newton iterations each at 0.94 per subproblem without
+  // the shrink; docs/solvers.md "The proximal shift"). After a subproblem that Newton did not
+  // solve, the shift grows tenfold and shrinks no more in that solve: the problem's
+  // degeneracy is then near (sphere packings). proximalShrink = 1 gives the residual rule alone.
+  int proximalQuickInner = 3;
+  double proximalShrink = 0.3;
 };
 
 class AcNewtonSolver final : public ContactSolver {

@@ -295,6 +295,24 @@ SearchResult lineSearch(NewtonSystem& system, const NewtonSettings& s, NewtonWor
   return out;
 }
 
+enum class Stall { None, Flat, TooSlow };
+
+// Stall test (5.12) on the best residual of the last s.stallIterations iterations: it fell by less
+// than s.stallDecrease (flat), or it falls at a rate that, kept up, would not reach the tolerance
+// within the iterations left (too slow: a watchdog cycle that gains 2 % per return, as on
+// box_pile_1000's first impacts, would use the whole budget and end far from the tolerance; the
+// caller's fallback, the proximal loop, gets the iterations instead).
+Stall stallOf(const std::vector<double>& bestHistory, const NewtonSettings& s, double tolerance,
+              int iterationsLeft) {
+  const int h = static_cast<int>(bestHistory.size()) - 1;
+  if (h < s.stallIterations) return Stall::None;
+  const double before = bestHistory[h - s.stallIterations], best = bestHistory[h];
+  if (best > (1.0 - s.stallDecrease) * before) return Stall::Flat;
+  if (!(tolerance > 0.0) || best <= tolerance) return Stall::None;
+  const double needed = s.stallIterations * std::log(tolerance / best) / std::log(best / before);
+  return needed > iterationsLeft ? Stall::TooSlow : Stall::None;
+}
+
 }  // namespace
 
 void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function,
@@ -426,13 +444,17 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
       ++k;
       break;
     }
-    const int h = static_cast<int>(bestHistory.size()) - 1;
-    if (h >= s.stallIterations &&
-        bestE > (1.0 - s.stallDecrease) * bestHistory[h - s.stallIterations]) {
+    if (const Stall stall = stallOf(bestHistory, s, context.tolerance(), maxIterations - k - 1);
+        stall != Stall::None) {
       report.status = SolverStatus::Stalled;
       char msg[96];
-      std::snprintf(msg, sizeof msg, "best residual fell by less than %g %% in %d iterations",
-                    s.stallDecrease * 100, s.stallIterations);
+      if (stall == Stall::Flat)
+        std::snprintf(msg, sizeof msg, "best residual fell by less than %g %% in %d iterations",
+                      s.stallDecrease * 100, s.stallIterations);
+      else
+        std::snprintf(msg, sizeof msg,
+                      "best residual falls too slowly to reach the tolerance in %d iterations",
+                      maxIterations - k - 1);
       report.note(msg);
       ++k;
       break;
