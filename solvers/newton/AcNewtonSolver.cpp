@@ -29,7 +29,6 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
   // the sparse pattern and its symbolic analysis carry over from one subproblem to the next.
   const double tol = context.tolerance();
   int outer = 0, used = 0;
-  bool innerFailed = false;  // a subproblem Newton did not solve: the shift shrinks no more
   while (used < budget && bestE > tol) {
     if (context.timeUp(report)) break;
     ++outer;
@@ -57,12 +56,13 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     e = p.residual(r, u);
     context.record(report, report.iterations + used, e);
     if (e < bestE) bestE = e, best = r;
+    // The shift falls by at most proximalShrink per subproblem: that far after an easy one,
+    // else toward 5 e mean W_ii (Siconos' PROX); it rises tenfold after one Newton did not solve.
     if (innerReport.status == SolverStatus::Converged) {
-      const bool quick = innerReport.iterations <= o.proximalQuickInner && !innerFailed;
-      sigma = std::min(quick ? o.proximalShrink * sigma : sigma, 5.0 * e * meanDiag);
+      const bool easy = innerReport.iterations <= o.proximalQuickInner;
+      sigma = std::max(o.proximalShrink * sigma, easy ? 0.0 : std::min(sigma, 5.0 * e * meanDiag));
     } else {
       sigma *= 10.0;
-      innerFailed = true;
     }
     sigma = std::max(sigma, 1e-14 * meanDiag);
   }

@@ -45,14 +45,14 @@ struct AcNewtonOptions {
   double proximalInitialShift = 1.0;
   // [Newton iterations] cap per proximal subproblem.
   int proximalInnerIterations = 50;
-  // The proximal shift follows the residual (s <= 5 e mean W_ii, Siconos' PROX) and, after a
-  // subproblem that Newton solved within proximalQuickInner iterations, also shrinks by
-  // proximalShrink: the loop gains sigma / (sigma + lambda) per subproblem along an eigenvalue
-  // lambda of W, so a shift that the inner Newton handles easily is larger than it needs to be
-  // (box piles: 40-60 subproblems of 1-2 Newton iterations each at 0.94 per subproblem without
-  // the shrink; docs/solvers.md "The proximal shift"). After a subproblem that Newton did not
-  // solve, the shift grows tenfold and shrinks no more in that solve: the problem's
-  // degeneracy is then near (sphere packings). proximalShrink = 1 gives the residual rule alone.
+  // The proximal shift falls by at most proximalShrink per solved subproblem: by that factor
+  // after one Newton solved within proximalQuickInner iterations, else toward 5 e mean W_ii
+  // (Siconos' PROX); it rises tenfold after one Newton did not solve. The loop gains about
+  // sigma / (sigma + lambda) per subproblem along an eigenvalue lambda of W, so a shift Newton
+  // handles easily is larger than it needs to be (box piles: 40-60 subproblems of 1-2 Newton
+  // iterations at ~6 % each under the residual rule alone), and a shift dropped at once to 5 e
+  // fails and climbs back decade by decade, again and again (RockPile_tob1: 60 % of the
+  // iterations in failed subproblems). docs/solvers.md "The proximal shift and the slow stall".
   int proximalQuickInner = 3;
   double proximalShrink = 0.3;
 };

@@ -33,20 +33,20 @@ int subproblemsOf(const SolverReport& report) {
 }  // namespace
 
 // A landed column of 10 boxes (40 contacts, W of rank 60): each subproblem FC(W + s I, q - s r_k)
-// takes Newton 1-2 iterations, and with the shift tied to the residual alone (s <= 5 e mean
-// W_ii) the loop gains only ~6 % per subproblem (measured: 62 subproblems, 93 iterations). With
-// the shrink after easy subproblems: 15 subproblems, 44 iterations.
+// takes Newton 1-2 iterations. With the shift tied to the residual alone (s = min(s, 5 e mean
+// W_ii), the rule before proximalShrink) the loop gained ~6 % per subproblem: 62 subproblems and
+// 93 iterations (measured). With the shift falling after easy subproblems: 15 and 44 (measured).
 TEST(ProximalShift, ShrinksAfterEasySubproblemsOnAPileColumn) {
   const ContactProblem p = fixtures::loadCapturedProblem("box_pile_1000_step60_island92");
-  const SolveOutcome residualRule = solveProx(p, 1.0);
-  const SolveOutcome shrinking = solveProx(p, AcNewtonOptions{}.proximalShrink);
-  ASSERT_EQ(residualRule.report.status, SolverStatus::Converged) << residualRule.report.message;
-  ASSERT_EQ(shrinking.report.status, SolverStatus::Converged) << shrinking.report.message;
-  EXPECT_LE(shrinking.report.residual, 1e-8);
-  EXPECT_LE(shrinking.report.iterations, 60) << shrinking.report.message;
-  EXPECT_GT(residualRule.report.iterations, 80) << residualRule.report.message;
-  EXPECT_LE(subproblemsOf(shrinking.report), 25) << shrinking.report.message;
-  EXPECT_GT(subproblemsOf(residualRule.report), 50) << residualRule.report.message;
+  const SolveOutcome out = solveProx(p, AcNewtonOptions{}.proximalShrink);
+  ASSERT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
+  EXPECT_LE(out.report.residual, 1e-8);
+  EXPECT_LE(out.report.iterations, 60) << out.report.message;
+  EXPECT_LE(subproblemsOf(out.report), 25) << out.report.message;
+  // A shift that never falls (proximalShrink = 1 holds it at its first value, mean W_ii) shows
+  // what the fall buys: the same answer takes several times the iterations.
+  const SolveOutcome fixedShift = solveProx(p, 1.0);
+  EXPECT_GT(fixedShift.report.iterations, 2 * out.report.iterations) << fixedShift.report.message;
 }
 
 // Step 31 of box_pile_1000 (16 contacts of boxes meeting in the air): plain Newton cycles through
