@@ -29,8 +29,15 @@ struct IslandReport {
   std::optional<solvers::SolverReport> penetration;  // split impulse's pseudo-solve, if it ran
   double penetrationSeconds = 0.0;                   // [s] split-impulse correction
 
-  /// Why this plan (formatted on each call: the step itself formats nothing).
-  [[nodiscard]] std::string reason() const { return plan.reason(); }
+  /// Why this plan (formatted on each call: the step itself formats nothing). An island solved by
+  /// its groups of acting contacts (solvers/ActiveGroups.hpp) says so first: its plan is the one
+  /// that would have run had the groups' answer missed the tolerance.
+  [[nodiscard]] std::string reason() const {
+    if (solve.solver == "groups")
+      return "solved by its groups of acting contacts (" + solve.message +
+             ", each by its own automatic plan); the island's plan, not run: " + plan.reason();
+    return plan.reason();
+  }
   [[nodiscard]] bool converged() const { return status == solvers::SolverStatus::Converged; }
 };
 

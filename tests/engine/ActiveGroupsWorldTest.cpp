@@ -43,6 +43,8 @@ TEST(ActiveGroupsWorld, BoxesSideBySideAreSolvedAsTwoGroups) {
     if (island.solve.solver == "groups") {
       ++byGroups;
       EXPECT_NE(island.solve.message.find("2 groups"), std::string::npos) << island.solve.message;
+      EXPECT_EQ(island.reason().rfind("solved by its groups of acting contacts", 0), 0u)
+          << island.reason();
     }
   }
   EXPECT_GT(byGroups, 50);
