@@ -7,6 +7,7 @@
 #include <coulomb/solvers/newton/AcNewtonSolver.hpp>
 #include <coulomb/solvers/newton/NonsmoothNewton.hpp>
 
+#include "PlainNewton.hpp"
 #include "TestProblems.hpp"
 
 #include <string>
@@ -65,13 +66,9 @@ TEST(NewtonStall, ARateTooSlowForTheBudgetHandsOverToTheProximalLoop) {
   EXPECT_NE(out.report.message.find("falls too slowly"), std::string::npos) << out.report.message;
 
   // The plain Newton loop alone: Stalled (the rate), well before its 200 iterations.
-  const PreparedProblem prepared = PreparedProblem::from(p);
-  const SolveContext context(o, SolveContext::Clock::now());
-  const NewtonSettings settings;
-  NewtonWorkspace work(settings);
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(prepared.size());
-  SolverReport report;
-  runNonsmoothNewton(prepared, AlartCurnierFunction{}, settings, context, 200, r, report, &work);
+  fixtures::PlainNewtonRun run;
+  fixtures::runPlainNewton(p, 1e-6, 200, run);
+  const SolverReport& report = run.report;
   EXPECT_EQ(report.status, SolverStatus::Stalled) << report.message;
   EXPECT_LT(report.iterations, 100) << report.message;
 }

@@ -6,6 +6,7 @@
 #include <coulomb/solvers/newton/AcNewtonSolver.hpp>
 #include <coulomb/solvers/newton/NonsmoothNewton.hpp>
 
+#include "PlainNewton.hpp"
 #include "TestProblems.hpp"
 
 #include <string>
@@ -63,19 +64,13 @@ TEST(WatchdogNewton, LeavesTheSearchItsLongStepsOnAMillionToOneMassRatio) {
 // factorization per iteration (measured on this column, plain Newton loop from r = 0 until its
 // stall test: 30 iterations, 2 returns, 28 dense factorizations).
 TEST(WatchdogNewton, AReturnToTheWatchdogPointCostsNoFactorization) {
-  const PreparedProblem p = PreparedProblem::from(loadPileColumn());
-  SolverOptions o;
-  o.tolerance = 1e-8;
-  const SolveContext context(o, SolveContext::Clock::now());
-  const NewtonSettings settings;
-  NewtonWorkspace work(settings);
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(p.size());
-  SolverReport report;
-  runNonsmoothNewton(p, AlartCurnierFunction{}, settings, context, 200, r, report, &work);
+  fixtures::PlainNewtonRun run;
+  fixtures::runPlainNewton(loadPileColumn(), 1e-8, 200, run);
+  const SolverReport& report = run.report;
   const std::size_t at = report.message.find(" returns to the watchdog point");
   ASSERT_NE(at, std::string::npos) << report.message;
   const int returns = std::stoi(report.message.substr(report.message.rfind(' ', at - 1) + 1));
   EXPECT_GT(returns, 0);
-  const NewtonLinearStats& stats = work.linear.stats();
+  const NewtonLinearStats& stats = run.work.linear.stats();
   EXPECT_EQ(stats.denseSolves + stats.sparseSolves + returns, report.iterations) << report.message;
 }
