@@ -242,9 +242,9 @@ void World::solveIsland(IslandWork& island) {
   // misses the tolerance.
   std::optional<solvers::PlanOutcome> byGroups;
   if (island.automaticPlan && solvers::splitsByActingContacts(problem, island.groupScratch))
-    byGroups =
-        solvers::solveByActiveGroups(problem, solvers::SolverChooser(settings_.solve.chooser),
-                                     choice, island.plan.options, registry_);
+    byGroups = solvers::solveByActiveGroups(
+        problem, solvers::SolverChooser(settings_.solve.chooser), choice, island.plan.options,
+        registry_, nullptr, &island.solvers);
   if (byGroups)
     island.outcome = std::move(*byGroups);
   else

@@ -137,7 +137,8 @@ std::optional<PlanOutcome> solveByActiveGroups(const ContactProblem& problem,
                                                const SolverChooser& chooser,
                                                const SolverChoice& choice,
                                                const SolverOptions& options,
-                                               const SolverRegistry& registry, bool* failedCheck) {
+                                               const SolverRegistry& registry, bool* failedCheck,
+                                               SolverInstances* instances) {
   if (failedCheck) *failedCheck = false;
   const int blocks = static_cast<int>(problem.blocks.size());
   if (blocks < 2 || problem.q.size() != 3 * blocks || !isotropicContactsOnly(problem))
@@ -168,8 +169,9 @@ std::optional<PlanOutcome> solveByActiveGroups(const ContactProblem& problem,
     out.attempts.clear();
     for (int g = 0; g < groups.count; ++g) {
       const ContactProblem sub = groupProblem(problem, *W, groups, g, rounds == 0 ? warm : &r);
-      const PlanOutcome solved =
-          solveWithFallback(sub, chooser.choose(sub, {}, choice, groupOptions), registry);
+      const SolvePlan plan = chooser.choose(sub, {}, choice, groupOptions);
+      const PlanOutcome solved = instances ? solveWithFallback(sub, plan, registry, *instances)
+                                           : solveWithFallback(sub, plan, registry);
       iterations += solved.iterations();
       for (int i = groups.memberStart[g]; i < groups.memberStart[g + 1]; ++i)
         r.segment<3>(3 * groups.members[i]) =

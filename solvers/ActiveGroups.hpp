@@ -52,9 +52,11 @@ ContactProblem groupProblem(const ContactProblem& problem, const BlockSparseMatr
 // `choice`: the outcome (solver "groups"; its attempts: the whole answer, then every group's in
 // order) when the whole residual meets options.tolerance; nullopt when the problem has other rows,
 // the acting contacts do not split (one group) or the whole residual misses the tolerance
-// (`failedCheck`, when given, is set then).
+// (`failedCheck`, when given, is set then). `instances`, when given, are the solvers the groups
+// run (created once, kept by the caller: a World island's); else they are made for this call.
 std::optional<PlanOutcome> solveByActiveGroups(
     const ContactProblem& problem, const SolverChooser& chooser, const SolverChoice& choice,
-    const SolverOptions& options, const SolverRegistry& registry, bool* failedCheck = nullptr);
+    const SolverOptions& options, const SolverRegistry& registry, bool* failedCheck = nullptr,
+    SolverInstances* instances = nullptr);
 
 }  // namespace coulomb::solvers
