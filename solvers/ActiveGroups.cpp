@@ -26,6 +26,17 @@ bool actsAtStart(const ContactProblem& problem, int b) {  // approaching or rest
   return problem.q[3 * b] <= 0.0 || (warm && (*problem.warmStart)[3 * b] > 0.0);
 }
 
+// Joins, in `parent`, every two acting contacts that share a block row of W.
+template <class Acting>
+void uniteThroughW(const BlockSparseMatrix& W, const Acting& acting, std::vector<int>& parent) {
+  for (int b = 0; b < W.blockCount(); ++b) {
+    if (!acting(b)) continue;
+    for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k)
+      if (const int c = W.blockColumn(k); c != b && acting(c))
+        parent[findRoot(parent, b)] = findRoot(parent, c);
+  }
+}
+
 }  // namespace
 
 bool splitsByActingContacts(const ContactProblem& problem, std::vector<int>& parent) {
@@ -43,16 +54,15 @@ bool splitsByActingContacts(const ContactProblem& problem, std::vector<int>& par
     const int b0 = body->blockBody(b, 0);
     return b0 >= 0 ? b0 : body->blockBody(b, 1);
   };
-  for (int b = 0; b < blocks; ++b) {
-    if (!actsAtStart(problem, b)) continue;
-    if (body != nullptr) {
+  if (body != nullptr) {
+    for (int b = 0; b < blocks; ++b) {
+      if (!actsAtStart(problem, b)) continue;
       const int b0 = body->blockBody(b, 0), b1 = body->blockBody(b, 1);
       if (b0 >= 0 && b1 >= 0) parent[findRoot(parent, b0)] = findRoot(parent, b1);
-    } else {
-      for (int k = W->rowBegin(b); k < W->rowEnd(b); ++k)
-        if (const int c = W->blockColumn(k); c != b && actsAtStart(problem, c))
-          parent[findRoot(parent, b)] = findRoot(parent, c);
     }
+  } else {
+    uniteThroughW(
+        *W, [&](int b) { return actsAtStart(problem, b); }, parent);
   }
   int first = -1;
   for (int b = 0; b < blocks; ++b) {
@@ -69,12 +79,8 @@ ActiveGroups activeGroups(const BlockSparseMatrix& W, const std::vector<char>& a
   const int blocks = W.blockCount();
   std::vector<int> parent(blocks);
   std::iota(parent.begin(), parent.end(), 0);
-  for (int b = 0; b < blocks; ++b) {
-    if (!acts[b]) continue;
-    for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k)
-      if (const int c = W.blockColumn(k); c != b && acts[c])
-        parent[findRoot(parent, b)] = findRoot(parent, c);
-  }
+  uniteThroughW(
+      W, [&](int b) { return acts[b] != 0; }, parent);
   groups.groupOfBlock.assign(blocks, -1);
   groups.indexInGroup.assign(blocks, -1);
   std::vector<int> groupOfRoot(blocks, -1), sizes;
