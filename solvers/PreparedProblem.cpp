@@ -18,6 +18,8 @@ void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) 
   PreparedProblem& p = *this;
   p.start.known = p.end.known = false;  // their vectors keep their storage
   p.bodySpace.reset();
+  p.factors.reset();
+  p.factorsShift = 0.0;
   p.diagonalBlocks = nullptr;
   p.scale.resize(0);
   p.maxDiagonal = 0.0;
@@ -35,6 +37,7 @@ void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) 
   p.end.u.resize(p.q.size());
   bool anisotropic = false;
   for (const ConstraintBlock& b : p.blocks) anisotropic |= b.isContact() && b.anisotropic;
+  if (!anisotropic && problem.W.bodySpaceOperator()) p.factors = problem.W.sharedBodySpace();
   if (keepBodySpace && !anisotropic && problem.W.bodySpaceOperator()) {
     p.bodySpace = problem.W.sharedBodySpace();
     p.diagonalBlocks = p.bodySpace->diagonalBlocks().data();

@@ -28,6 +28,12 @@ struct PreparedProblem {
   // With bodySpace: W_bb row-major at 9 b, the factors' own cache (BodySpaceDelassus::
   // diagonalBlocks, valid while bodySpace is held: the factors are never changed once shared).
   const double* diagonalBlocks = nullptr;
+  // The factors of W (J M^-1 J^T) when the problem came with them and is isotropic, kept after
+  // formExplicitW: a Newton step may solve its system in body space (BodySpaceNewtonSolve, when
+  // that system is the smaller). W = factors + factorsShift I (a proximal subproblem adds its
+  // shift to W and to factorsShift). Released with bodySpace when the solve ends.
+  std::shared_ptr<const BodySpaceDelassus> factors;
+  double factorsShift = 0.0;
   Eigen::VectorXd q;
   std::vector<ConstraintBlock> blocks;  // isotropic (anisotropic ones mapped, see above)
   std::vector<int> offset;              // blocks.size() + 1 entries

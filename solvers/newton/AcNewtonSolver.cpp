@@ -34,6 +34,7 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     ++outer;
     inner.W = p.W;
     inner.W.addToDiagonal(sigma);
+    inner.factorsShift = p.factorsShift + sigma;
     inner.q = p.q;
     inner.q -= sigma * r;
     inner.qNorm = plainNorm(inner.q);
@@ -66,6 +67,7 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     }
     sigma = std::max(sigma, 1e-14 * meanDiag);
   }
+  inner.factors.reset();  // the problem's factors: the caller's to release
   report.iterations += used;
   r = best;
   // Formatted on the stack: a steady step allocates nothing (docs/architecture.md, memory).

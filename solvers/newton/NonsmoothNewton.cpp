@@ -117,6 +117,8 @@ class NewtonSystem {
   // `refactor` false, the rows kept and the factors of the last solve are reused.
   bool solve(const Eigen::VectorXd& phi, double sigma, Eigen::VectorXd& d, bool refactor = true) {
     const int n = p_.size();
+    if (!refactor && work_.bodyFactored) return solveInBodySpace(phi, sigma, d, false);
+    if (refactor) work_.bodyFactored = false;
     std::vector<int>& index = work_.index;
     std::vector<int>& kept = work_.kept;
     if (refactor) {
@@ -145,6 +147,8 @@ class NewtonSystem {
     }
     const int m = static_cast<int>(kept.size());
     if (m == 0) return true;
+    if (refactor && prefersBodySpace(m, sigma) && solveInBodySpace(phi, sigma, d, true))
+      return true;
     // rhs = -phi_R - (J_sigma d_E)_R
     Eigen::VectorXd& wd = work_.solveWd;
     Eigen::VectorXd& jd = work_.solveJd;
@@ -165,6 +169,50 @@ class NewtonSystem {
                  : !linear_.solveAgain(rhs, x))
       return false;
     for (int k = 0; k < m; ++k) d[kept[k]] = x[k];
+    return true;
+  }
+
+  // The body-space path (BodySpaceNewtonSolve) when the problem keeps W's factors, J_sigma's
+  // diagonal shift (sigma plus the subproblem's) is positive, the kept rows would take the dense
+  // LU and the body-space factorization costs fewer flops.
+  [[nodiscard]] bool prefersBodySpace(int keptRows, double sigma) const {
+    const BodySpaceDelassus* f = p_.factors.get();
+    return work_.bodySpaceSolve && f != nullptr && p_.scale.size() == 0 && f->size() == p_.size() &&
+           sigma + p_.factorsShift > 0.0 && keptRows <= linear_.denseThreshold() &&
+           BodySpaceNewtonSolve::bodySpaceCost(*f) <
+               BodySpaceNewtonSolve::contactSpaceCost(keptRows);
+  }
+
+  // J_sigma d = -phi on every row in body space, with up to two steps of iterative refinement on
+  // the residual (computed with W's entries); true (and d set) when the residual is within 1e-8
+  // of the right-hand side, as the contact-space LU's check. With `refactor` false the factors of
+  // the last body-space solve are reused.
+  bool solveInBodySpace(const Eigen::VectorXd& phi, double sigma, Eigen::VectorXd& d,
+                        bool refactor) {
+    BodySpaceNewtonSolve& body = work_.body;
+    if (refactor) {
+      work_.bodyFactored = false;
+      if (!body.factor(*p_.factors, p_.offset, jac_, sigma + p_.factorsShift)) return false;
+      ++work_.bodySpaceSolves;
+    }
+    Eigen::VectorXd &rhs = work_.bodyRhs, &x = work_.bodyX, &check = work_.bodyCheck;
+    Eigen::VectorXd &wd = work_.solveWd, &jd = work_.solveJd;
+    rhs = -phi;
+    body.solve(rhs, x);
+    const double bound = 1e-8 * rhs.norm();
+    for (int refinement = 0;; ++refinement) {
+      if (!x.allFinite()) return false;
+      wd = sigma * x;
+      p_.W.multiplyAdd(x, wd);
+      applyAB(wd, x, jd);
+      check = rhs - jd;
+      if (check.norm() <= bound) break;
+      if (refinement == 2) return false;
+      body.solve(check, jd);  // the correction (jd is free until the next product)
+      x += jd;
+    }
+    d = x;
+    work_.bodyFactored = true;
     return true;
   }
 

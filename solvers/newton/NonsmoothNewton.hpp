@@ -7,6 +7,7 @@
 // residual.
 #include <coulomb/solvers/PreparedProblem.hpp>
 #include <coulomb/solvers/SolverReport.hpp>
+#include <coulomb/solvers/newton/BodySpaceNewtonSolve.hpp>
 #include <coulomb/solvers/newton/NewtonFunction.hpp>
 #include <coulomb/solvers/newton/NewtonLinearSolver.hpp>
 
@@ -54,6 +55,12 @@ struct NewtonSettings {
   // solve"); correctness first.
   int denseThreshold = 300;
   double sparseMaxDensity = 0.5;
+  // Solve the step in body space (BodySpaceNewtonSolve) when the problem keeps W's factors, the
+  // shift is positive and that system is the cheaper (an island with more contact rows than
+  // velocities: a column of boxes, four points per face); the contact-space LU otherwise, or when
+  // the body-space answer misses the residual check. docs/solvers.md "The Newton step in body
+  // space".
+  bool bodySpaceSolve = true;
   int defaultMaxIterations = 200;  // AC11 section 5.2
 };
 
@@ -68,8 +75,14 @@ struct NewtonSettings {
 // pattern and symbolic analysis carry over). Not for two solves at once.
 struct NewtonWorkspace {
   explicit NewtonWorkspace(const NewtonSettings& settings)
-      : linear(settings.denseThreshold, settings.sparseMaxDensity) {}
+      : linear(settings.denseThreshold, settings.sparseMaxDensity),
+        bodySpaceSolve(settings.bodySpaceSolve) {}
   NewtonLinearSolver linear;
+  bool bodySpaceSolve;
+  BodySpaceNewtonSolve body;                        // the body-space path and its factors
+  bool bodyFactored = false;                        // the last factorization was body's
+  int bodySpaceSolves = 0;                          // factorizations in body space (tests, reports)
+  Eigen::VectorXd bodyRhs, bodyX, bodyCheck;        // its right-hand side, answer and residual
   std::vector<double> rhoN, rhoT;                   // (5.14) per block
   std::vector<NewtonBlockJacobian> jac;             // A_b, B_b per block
   std::vector<int> index, kept;                     // rows kept after eliminating unit rows (5.7)
