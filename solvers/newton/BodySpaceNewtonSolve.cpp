@@ -55,7 +55,6 @@ bool BodySpaceNewtonSolve::factor(const BodySpaceDelassus& W, const std::vector<
   }
   if (k_.rows() < m) {
     k_.resize(m, m);
-    transpositions_.resize(static_cast<std::size_t>(m));
   }
   using Block = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
   Block K(k_.data(), m, m, Eigen::OuterStride<>(k_.rows()));
@@ -64,38 +63,45 @@ bool BodySpaceNewtonSolve::factor(const BodySpaceDelassus& W, const std::vector<
     const int k = W.blockSize(b);
     const Eigen::Matrix3d D = jac[b].B + shift * jac[b].A;
     if (!invertBlock(D, k, dInverse_[b])) return false;
-    e_[b].setZero();
-    e_[b].topLeftCorner(k, k) = dInverse_[b].topLeftCorner(k, k) * jac[b].A.topLeftCorner(k, k);
+    if (k == 3) {
+      e_[b].noalias() = dInverse_[b] * jac[b].A;
+    } else {
+      e_[b].setZero();
+      e_[b](0, 0) = dInverse_[b](0, 0) * jac[b].A(0, 0);
+    }
     const int row0 = offset[b];
-    for (int t = 0; t < 2; ++t) {
+    if (k == 3) {  // a contact: fixed-size products (the rows of one side are 12 doubles apart)
+      using Rows =
+          Eigen::Map<const Eigen::Matrix<double, 3, 6, Eigen::RowMajor>, 0, Eigen::OuterStride<12>>;
+      using Columns = Eigen::Map<const Eigen::Matrix<double, 6, 3>, 0, Eigen::OuterStride<12>>;
+      for (int t = 0; t < 2; ++t) {
+        const int bodyT = W.blockBody(b, t);
+        if (bodyT < 0) continue;
+        const Eigen::Matrix<double, 3, 6> F = e_[b] * Rows(W.jacobianRow(row0, t));
+        for (int s = 0; s < 2; ++s) {
+          const int bodyS = W.blockBody(b, s);
+          if (bodyS < 0) continue;
+          K.block<6, 6>(6 * bodyS, 6 * bodyT).noalias() +=
+              Columns(W.inverseMassColumn(row0, s)) * F;
+        }
+      }
+      continue;
+    }
+    for (int t = 0; t < 2; ++t) {  // a scalar row
       const int bodyT = W.blockBody(b, t);
       if (bodyT < 0) continue;
-      double f[3][6];  // F = E_b J_{b,t} (k x 6)
-      for (int a = 0; a < k; ++a)
-        for (int c = 0; c < 6; ++c) {
-          double v = 0.0;
-          for (int x = 0; x < k; ++x) v += e_[b](a, x) * W.jacobianRow(row0 + x, t)[c];
-          f[a][c] = v;
-        }
+      const double e = e_[b](0, 0);
+      const double* j = W.jacobianRow(row0, t);
       for (int s = 0; s < 2; ++s) {
         const int bodyS = W.blockBody(b, s);
         if (bodyS < 0) continue;
-        for (int c = 0; c < 6; ++c) {
-          double* column = &K(6 * bodyS, 6 * bodyT + c);
-          for (int a = 0; a < k; ++a) {
-            const double* g = W.inverseMassColumn(row0 + a, s);  // (M^-1 J^T) column, 6 values
-            const double fa = f[a][c];
-            for (int r = 0; r < 6; ++r) column[r] += g[r] * fa;
-          }
-        }
+        const double* g = W.inverseMassColumn(row0, s);
+        for (int c = 0; c < 6; ++c)
+          for (int r = 0; r < 6; ++r) K(6 * bodyS + r, 6 * bodyT + c) += g[r] * e * j[c];
       }
     }
   }
-  int transpositionCount = 0;
-  Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>::blocked_lu(
-      m, m, K.data(), K.outerStride(), transpositions_.data(), transpositionCount);
-  for (int i = 0; i < m; ++i)
-    if (!(std::abs(K(i, i)) > 0.0) || !std::isfinite(K(i, i))) return false;
+  if (!blockLu(W)) return false;
   W_ = &W;
   offset_ = &offset;
   m_ = m;
@@ -123,13 +129,7 @@ void BodySpaceNewtonSolve::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     }
     W.addBlockImpulse(blk, y_.data() + o, g_);
   }
-  // z = K^-1 g (in place in g)
-  using Block = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
-  const Block lu(k_.data(), m, m, Eigen::OuterStride<>(k_.rows()));
-  auto z = g_.head(m);
-  for (int i = 0; i < m; ++i) std::swap(z[i], z[transpositions_[static_cast<std::size_t>(i)]]);
-  lu.triangularView<Eigen::UnitLower>().solveInPlace(z);
-  lu.triangularView<Eigen::Upper>().solveInPlace(z);
+  blockSolve(g_);  // z = K^-1 g in place
   // x = y - E J z
   jz_.head(n).setZero();
   W.addRowVelocities(g_, jz_.data());
@@ -140,6 +140,91 @@ void BodySpaceNewtonSolve::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
       for (int c = 0; c < k; ++c) v -= e_[blk](a, c) * jz_[o + c];
       x[o + a] = v;
     }
+  }
+}
+
+// K = L U by 6 x 6 blocks in the bodies' order, skipping the blocks that are zero in K and stay
+// zero (K's pattern is the island's body graph: a column of boxes is block-tridiagonal and its
+// factors keep that pattern), pivoting inside each diagonal block: M K = M + J^T E J is symmetric
+// positive definite where the contacts stick (E = I / (s rho)), so the diagonal blocks are the
+// natural pivots; the caller's residual check covers the rest. Right-looking: after step k,
+// K_kj (j > k) holds K_kk^-1 K_kj and the blocks below and right of k are Schur-updated.
+bool BodySpaceNewtonSolve::blockLu(const BodySpaceDelassus& W) {
+  const int nb = W.bodyCount(), m = 6 * nb;
+  const Eigen::Index lda = k_.rows();
+  nonzero_.assign(static_cast<std::size_t>(nb) * nb, 0);
+  for (int i = 0; i < nb; ++i) nonzero_[static_cast<std::size_t>(i) * nb + i] = 1;
+  for (int b = 0; b < W.blockCount(); ++b) {
+    const int s = W.blockBody(b, 0), t = W.blockBody(b, 1);
+    if (s < 0 || t < 0) continue;
+    nonzero_[static_cast<std::size_t>(s) * nb + t] =
+        nonzero_[static_cast<std::size_t>(t) * nb + s] = 1;
+  }
+  if (static_cast<int>(pivots_.size()) < nb) pivots_.resize(nb);
+  if (static_cast<int>(below_.size()) < nb) {
+    below_.resize(nb);
+    right_.resize(nb);
+  }
+  using Block6 = Eigen::Map<Eigen::Matrix<double, 6, 6>, 0, Eigen::OuterStride<>>;
+  const auto block = [&](int i, int j) {
+    return Block6(k_.data() + 6 * i + 6 * j * lda, 6, 6, Eigen::OuterStride<>(lda));
+  };
+  const auto nz = [&](int i, int j) -> char& {
+    return nonzero_[static_cast<std::size_t>(i) * nb + j];
+  };
+  for (int k = 0; k < nb; ++k) {
+    Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>>& pivot = pivots_[k];
+    pivot.compute(block(k, k));
+    const Eigen::Matrix<double, 6, 6>& lu = pivot.matrixLU();
+    for (int d = 0; d < 6; ++d)
+      if (!(std::abs(lu(d, d)) > 0.0) || !std::isfinite(lu(d, d))) return false;
+    int belowCount = 0, rightCount = 0;
+    for (int i = k + 1; i < nb; ++i) {
+      if (nz(i, k)) below_[belowCount++] = i;
+      if (nz(k, i)) right_[rightCount++] = i;
+    }
+    for (int r = 0; r < rightCount; ++r) {
+      Block6 kj = block(k, right_[r]);
+      kj = pivot.solve(Eigen::Matrix<double, 6, 6>(kj));
+    }
+    for (int a = 0; a < belowCount; ++a) {
+      const int i = below_[a];
+      const Eigen::Matrix<double, 6, 6> ik = block(i, k);
+      for (int r = 0; r < rightCount; ++r) {
+        const int j = right_[r];
+        if (!nz(i, j)) {
+          block(i, j).setZero();
+          nz(i, j) = 1;
+        }
+        block(i, j).noalias() -= ik * block(k, j);
+      }
+    }
+  }
+  m_ = m;
+  return true;
+}
+
+// z = K^-1 z with blockLu's factors: L (the Schur-updated lower blocks and the diagonal blocks'
+// LU) forward, then the unit upper blocks backward.
+void BodySpaceNewtonSolve::blockSolve(Eigen::VectorXd& z) const {
+  const int nb = m_ / 6;
+  const Eigen::Index lda = k_.rows();
+  using Block6 = Eigen::Map<const Eigen::Matrix<double, 6, 6>, 0, Eigen::OuterStride<>>;
+  const auto block = [&](int i, int j) {
+    return Block6(k_.data() + 6 * i + 6 * j * lda, 6, 6, Eigen::OuterStride<>(lda));
+  };
+  const auto nz = [&](int i, int j) { return nonzero_[static_cast<std::size_t>(i) * nb + j] != 0; };
+  for (int k = 0; k < nb; ++k) {
+    Eigen::Matrix<double, 6, 1> v = z.segment<6>(6 * k);
+    for (int i = 0; i < k; ++i)
+      if (nz(k, i)) v.noalias() -= block(k, i) * z.segment<6>(6 * i);
+    z.segment<6>(6 * k) = pivots_[k].solve(v);
+  }
+  for (int k = nb - 1; k >= 0; --k) {
+    Eigen::Matrix<double, 6, 1> v = z.segment<6>(6 * k);
+    for (int j = k + 1; j < nb; ++j)
+      if (nz(k, j)) v.noalias() -= block(k, j) * z.segment<6>(6 * j);
+    z.segment<6>(6 * k) = v;
   }
 }
 

@@ -13,6 +13,7 @@
 #include <coulomb/solvers/newton/NewtonLinearSolver.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include <vector>
 
@@ -37,10 +38,15 @@ class BodySpaceNewtonSolve {
   const BodySpaceDelassus* W_ = nullptr;
   const std::vector<int>* offset_ = nullptr;
   std::vector<Eigen::Matrix3d> dInverse_, e_;  // per block: D_b^-1 and E_b = D_b^-1 A_b
-  // K and its LU in the leading m x m block of storage sized to the largest m met (no allocation
-  // when an island keeps its size), with the row transpositions.
+  bool blockLu(const BodySpaceDelassus& W);
+  void blockSolve(Eigen::VectorXd& z) const;
+  // K and its block LU in the leading m x m block of storage sized to the largest m met (no
+  // allocation when an island keeps its size); which 6 x 6 blocks are nonzero (with fill), the
+  // diagonal blocks' pivoted LU, and the lists of one elimination step.
   Eigen::MatrixXd k_;
-  std::vector<int> transpositions_;
+  std::vector<char> nonzero_;
+  std::vector<Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>>> pivots_;
+  std::vector<int> below_, right_;
   int m_ = 0;
   Eigen::VectorXd y_, g_, jz_;
 };

@@ -79,9 +79,10 @@ struct NewtonWorkspace {
         bodySpaceSolve(settings.bodySpaceSolve) {}
   NewtonLinearSolver linear;
   bool bodySpaceSolve;
-  BodySpaceNewtonSolve body;                        // the body-space path and its factors
-  bool bodyFactored = false;                        // the last factorization was body's
-  int bodySpaceSolves = 0;                          // factorizations in body space (tests, reports)
+  BodySpaceNewtonSolve body;  // the body-space path and its factors
+  bool bodyFactored = false;  // the last factorization was body's
+  bool wdOfD = false;         // the last solve left W d in wd (body space: its residual check)
+  int bodySpaceSolves = 0;    // factorizations in body space (tests, reports)
   Eigen::VectorXd bodyRhs, bodyX, bodyCheck;        // its right-hand side, answer and residual
   std::vector<double> rhoN, rhoT;                   // (5.14) per block
   std::vector<NewtonBlockJacobian> jac;             // A_b, B_b per block
