@@ -110,27 +110,38 @@ ContactProblem groupProblem(const ContactProblem& problem, const BlockSparseMatr
                             const Eigen::VectorXd* warmStart) {
   const int* members = groups.members.data() + groups.memberStart[group];
   const int n = groups.memberStart[group + 1] - groups.memberStart[group];
-  std::vector<int> rowStart{0}, columns;
-  std::vector<double> values;
   Eigen::VectorXd q(3 * n);
   std::vector<double> mu(n);
   for (int i = 0; i < n; ++i) {
-    const int b = members[i];
-    // W's block rows keep their columns in ascending order, and indexInGroup ascends with them.
-    for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {
-      const int column = W.blockColumn(k);
-      if (groups.groupOfBlock[column] != group) continue;
-      columns.push_back(groups.indexInGroup[column]);
-      values.insert(values.end(), W.blockValues(k), W.blockValues(k) + 9);
-    }
-    rowStart.push_back(static_cast<int>(columns.size()));
-    q.segment<3>(3 * i) = problem.q.segment<3>(3 * b);
-    mu[i] = problem.blocks[b].mu;
+    q.segment<3>(3 * i) = problem.q.segment<3>(3 * members[i]);
+    mu[i] = problem.blocks[members[i]].mu;
   }
-  ContactProblem sub = ContactProblem::contacts(
-      DelassusOperator::blockSparse(BlockSparseMatrix::fromBlockCsr(
-          std::vector<int>(n, 3), std::move(rowStart), std::move(columns), std::move(values))),
-      std::move(q), mu, problem.name + "_group" + std::to_string(group));
+  // A body-space island's group keeps W's factors on its own bodies: it is solved as an island
+  // of those bodies would be (the Newton step in body space, the sticking start).
+  DelassusOperator groupW;
+  if (const BodySpaceDelassus* body = problem.W.bodySpaceOperator()) {
+    auto factors = std::make_shared<BodySpaceDelassus>(0, std::vector<int>{});
+    std::vector<int> localOf;
+    body->extract(members, n, *factors, localOf);
+    groupW = DelassusOperator::bodySpace(std::move(factors));
+  } else {
+    std::vector<int> rowStart{0}, columns;
+    std::vector<double> values;
+    for (int i = 0; i < n; ++i) {
+      // W's block rows keep their columns in ascending order, and indexInGroup ascends with them.
+      for (int k = W.rowBegin(members[i]); k < W.rowEnd(members[i]); ++k) {
+        const int column = W.blockColumn(k);
+        if (groups.groupOfBlock[column] != group) continue;
+        columns.push_back(groups.indexInGroup[column]);
+        values.insert(values.end(), W.blockValues(k), W.blockValues(k) + 9);
+      }
+      rowStart.push_back(static_cast<int>(columns.size()));
+    }
+    groupW = DelassusOperator::blockSparse(BlockSparseMatrix::fromBlockCsr(
+        std::vector<int>(n, 3), std::move(rowStart), std::move(columns), std::move(values)));
+  }
+  ContactProblem sub = ContactProblem::contacts(std::move(groupW), std::move(q), mu,
+                                                problem.name + "_group" + std::to_string(group));
   if (warmStart != nullptr) {
     Eigen::VectorXd warm(3 * n);
     for (int i = 0; i < n; ++i) warm.segment<3>(3 * i) = warmStart->segment<3>(3 * members[i]);

@@ -60,6 +60,22 @@ void BodySpaceDelassus::gather(const int* blocks, int count, BodySpaceDelassus& 
   }
 }
 
+void BodySpaceDelassus::extract(const int* blocks, int count, BodySpaceDelassus& out,
+                                std::vector<int>& localOf) const {
+  gather(blocks, count, out);
+  localOf.assign(static_cast<std::size_t>(bodies_), -1);
+  int local = 0;
+  for (int i = 0; i < count; ++i)  // bodies numbered in the order the blocks first meet them
+    for (int side = 0; side < 2; ++side) {
+      int& body = out.body_[2 * i + side];
+      if (body < 0) continue;
+      int& mapped = localOf[static_cast<std::size_t>(body)];
+      if (mapped < 0) mapped = local++;
+      body = mapped;
+    }
+  out.bodies_ = local;
+}
+
 void BodySpaceDelassus::setSide(int block, int side, int body,
                                 const Eigen::Ref<const Eigen::MatrixXd>& J,
                                 const Eigen::Ref<const Eigen::MatrixXd>& G) {

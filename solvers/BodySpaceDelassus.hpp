@@ -87,6 +87,11 @@ class BodySpaceDelassus {
   /// of `out` is block blocks[i] here (a sweep's blocks made contiguous in memory, so that a
   /// sweep in that order streams them). Reuses out's storage.
   void gather(const int* blocks, int count, BodySpaceDelassus& out) const;
+  /// The same as gather, on the listed blocks' bodies only: those are renumbered 0 .. k-1 in the
+  /// order the blocks first meet them (`localOf[body]`: the new number, or -1), so the operator
+  /// has the velocities of a group of contacts and no more (solvers/ActiveGroups).
+  void extract(const int* blocks, int count, BodySpaceDelassus& out,
+               std::vector<int>& localOf) const;
   /// The operator of the given rows only (each a 1-row block on the same bodies), e.g. the
   /// contacts' normal rows for the split impulse: W' = W restricted to those rows and columns.
   [[nodiscard]] BodySpaceDelassus selectRows(const std::vector<int>& rows) const;
