@@ -186,3 +186,24 @@ TEST(BodySpaceDelassus, RawSidesCachedDiagonalAndFiniteness) {
   EXPECT_TRUE(raw.allFinite());
   EXPECT_THROW(raw.setSide(1, 0, 9, J2.data(), G2.data()), std::invalid_argument);
 }
+
+// extract(): the blocks of a group on their own bodies. Contacts 3 and 4 of a 6-body chain touch
+// bodies 2, 3 and 4 only: the extracted operator has 3 bodies (numbered as the blocks meet them)
+// and the same W restricted to those blocks.
+TEST(BodySpaceDelassus, ExtractKeepsTheGroupsBlocksOnTheirOwnBodies) {
+  const Chain c = chain(6, 5);
+  const Eigen::MatrixXd W = c.J * c.Minv * c.J.transpose();
+  const int blocks[2] = {3, 4};
+  BodySpaceDelassus group(0, {});
+  std::vector<int> localOf;
+  c.factors->extract(blocks, 2, group, localOf);
+  EXPECT_EQ(group.bodyCount(), 3);
+  EXPECT_EQ(group.blockCount(), 2);
+  EXPECT_EQ(localOf[2], 0);
+  EXPECT_EQ(localOf[3], 1);
+  EXPECT_EQ(localOf[4], 2);
+  EXPECT_EQ(localOf[0], -1);
+  EXPECT_EQ(group.blockBody(0, 0), 0);  // contact 3: bodies 2 (side 0) and 3
+  EXPECT_EQ(group.blockBody(1, 1), 2);  // contact 4: bodies 3 and 4 (side 1)
+  EXPECT_LT((group.toBlockSparse().toDense() - W.block<6, 6>(9, 9)).norm(), 1e-12);
+}
