@@ -1,8 +1,7 @@
 #include <coulomb/solvers/newton/BodySpaceNewtonSolve.hpp>
 
-#include <Eigen/LU>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace coulomb::solvers {
@@ -23,6 +22,40 @@ bool invertBlock(const Eigen::Matrix3d& D, int k, Eigen::Matrix3d& inverse) {
   if (!std::isfinite(det) || !(std::abs(det) > 1e-14 * scale * scale * scale)) return false;
   inverse = D.inverse();
   return inverse.allFinite();
+}
+
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+// P A = L U of a 6 x 6 block in place, partial pivoting by rows (the operations of Eigen's
+// unblocked PartialPivLU, written out: its fixed-size solves go through the general triangular
+// solver, several times the arithmetic here); false on a zero or non-finite pivot.
+bool factorPivotBlock(Matrix6& a, std::array<int, 6>& transpositions) {
+  for (int k = 0; k < 6; ++k) {
+    int pivot = k;
+    for (int i = k + 1; i < 6; ++i)
+      if (std::abs(a(i, k)) > std::abs(a(pivot, k))) pivot = i;
+    transpositions[k] = pivot;
+    if (pivot != k) a.row(k).swap(a.row(pivot));
+    const double diagonal = a(k, k);
+    if (!(std::abs(diagonal) > 0.0) || !std::isfinite(diagonal)) return false;
+    for (int i = k + 1; i < 6; ++i) a(i, k) /= diagonal;
+    for (int j = k + 1; j < 6; ++j)
+      for (int i = k + 1; i < 6; ++i) a(i, j) -= a(i, k) * a(k, j);
+  }
+  return true;
+}
+
+// x := A^-1 x with factorPivotBlock's factors.
+template <class Vector>
+void solvePivotBlock(const Matrix6& lu, const std::array<int, 6>& transpositions, Vector&& x) {
+  for (int k = 0; k < 6; ++k)
+    if (transpositions[k] != k) std::swap(x[k], x[transpositions[k]]);
+  for (int k = 0; k < 6; ++k)
+    for (int i = k + 1; i < 6; ++i) x[i] -= lu(i, k) * x[k];
+  for (int k = 5; k >= 0; --k) {
+    x[k] /= lu(k, k);
+    for (int i = 0; i < k; ++i) x[i] -= lu(i, k) * x[k];
+  }
 }
 
 }  // namespace
@@ -70,6 +103,7 @@ bool BodySpaceNewtonSolve::factor(const BodySpaceDelassus& W, const std::vector<
       e_[b](0, 0) = dInverse_[b](0, 0) * jac[b].A(0, 0);
     }
     const int row0 = offset[b];
+    if (jac[b].A.isZero(0.0)) continue;  // E_b = 0 (an open contact): nothing in K
     if (k == 3) {  // a contact: fixed-size products (the rows of one side are 12 doubles apart)
       using Rows =
           Eigen::Map<const Eigen::Matrix<double, 3, 6, Eigen::RowMajor>, 0, Eigen::OuterStride<12>>;
@@ -160,7 +194,10 @@ bool BodySpaceNewtonSolve::blockLu(const BodySpaceDelassus& W) {
     nonzero_[static_cast<std::size_t>(s) * nb + t] =
         nonzero_[static_cast<std::size_t>(t) * nb + s] = 1;
   }
-  if (static_cast<int>(pivots_.size()) < nb) pivots_.resize(nb);
+  if (static_cast<int>(pivotLu_.size()) < nb) {
+    pivotLu_.resize(nb);
+    pivotRows_.resize(nb);
+  }
   if (static_cast<int>(below_.size()) < nb) {
     below_.resize(nb);
     right_.resize(nb);
@@ -173,11 +210,9 @@ bool BodySpaceNewtonSolve::blockLu(const BodySpaceDelassus& W) {
     return nonzero_[static_cast<std::size_t>(i) * nb + j];
   };
   for (int k = 0; k < nb; ++k) {
-    Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>>& pivot = pivots_[k];
-    pivot.compute(block(k, k));
-    const Eigen::Matrix<double, 6, 6>& lu = pivot.matrixLU();
-    for (int d = 0; d < 6; ++d)
-      if (!(std::abs(lu(d, d)) > 0.0) || !std::isfinite(lu(d, d))) return false;
+    Matrix6& lu = pivotLu_[k];
+    lu = block(k, k);
+    if (!factorPivotBlock(lu, pivotRows_[k])) return false;
     int belowCount = 0, rightCount = 0;
     for (int i = k + 1; i < nb; ++i) {
       if (nz(i, k)) below_[belowCount++] = i;
@@ -185,11 +220,11 @@ bool BodySpaceNewtonSolve::blockLu(const BodySpaceDelassus& W) {
     }
     for (int r = 0; r < rightCount; ++r) {
       Block6 kj = block(k, right_[r]);
-      kj = pivot.solve(Eigen::Matrix<double, 6, 6>(kj));
+      for (int c = 0; c < 6; ++c) solvePivotBlock(lu, pivotRows_[k], kj.col(c));
     }
     for (int a = 0; a < belowCount; ++a) {
       const int i = below_[a];
-      const Eigen::Matrix<double, 6, 6> ik = block(i, k);
+      const Matrix6 ik = block(i, k);
       for (int r = 0; r < rightCount; ++r) {
         const int j = right_[r];
         if (!nz(i, j)) {
@@ -218,7 +253,8 @@ void BodySpaceNewtonSolve::blockSolve(Eigen::VectorXd& z) const {
     Eigen::Matrix<double, 6, 1> v = z.segment<6>(6 * k);
     for (int i = 0; i < k; ++i)
       if (nz(k, i)) v.noalias() -= block(k, i) * z.segment<6>(6 * i);
-    z.segment<6>(6 * k) = pivots_[k].solve(v);
+    solvePivotBlock(pivotLu_[k], pivotRows_[k], v);
+    z.segment<6>(6 * k) = v;
   }
   for (int k = nb - 1; k >= 0; --k) {
     Eigen::Matrix<double, 6, 1> v = z.segment<6>(6 * k);

@@ -13,8 +13,8 @@
 #include <coulomb/solvers/newton/NewtonLinearSolver.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
+#include <array>
 #include <vector>
 
 namespace coulomb::solvers {
@@ -42,10 +42,11 @@ class BodySpaceNewtonSolve {
   void blockSolve(Eigen::VectorXd& z) const;
   // K and its block LU in the leading m x m block of storage sized to the largest m met (no
   // allocation when an island keeps its size); which 6 x 6 blocks are nonzero (with fill), the
-  // diagonal blocks' pivoted LU, and the lists of one elimination step.
+  // pivot blocks' LU, and the lists of one elimination step.
   Eigen::MatrixXd k_;
   std::vector<char> nonzero_;
-  std::vector<Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>>> pivots_;
+  std::vector<Eigen::Matrix<double, 6, 6>> pivotLu_;  // the pivot blocks' P A = L U
+  std::vector<std::array<int, 6>> pivotRows_;         // ... and their row transpositions
   std::vector<int> below_, right_;
   int m_ = 0;
   Eigen::VectorXd y_, g_, jz_;
