@@ -1,5 +1,7 @@
 #include <coulomb/solvers/newton/BodySpaceNewtonSolve.hpp>
 
+#include <coulomb/solvers/newton/SmallLu.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,38 +27,6 @@ bool invertBlock(const Eigen::Matrix3d& D, int k, Eigen::Matrix3d& inverse) {
 }
 
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
-
-// P A = L U of a 6 x 6 block in place, partial pivoting by rows (the operations of Eigen's
-// unblocked PartialPivLU, written out: its fixed-size solves go through the general triangular
-// solver, several times the arithmetic here); false on a zero or non-finite pivot.
-bool factorPivotBlock(Matrix6& a, std::array<int, 6>& transpositions) {
-  for (int k = 0; k < 6; ++k) {
-    int pivot = k;
-    for (int i = k + 1; i < 6; ++i)
-      if (std::abs(a(i, k)) > std::abs(a(pivot, k))) pivot = i;
-    transpositions[k] = pivot;
-    if (pivot != k) a.row(k).swap(a.row(pivot));
-    const double diagonal = a(k, k);
-    if (!(std::abs(diagonal) > 0.0) || !std::isfinite(diagonal)) return false;
-    for (int i = k + 1; i < 6; ++i) a(i, k) /= diagonal;
-    for (int j = k + 1; j < 6; ++j)
-      for (int i = k + 1; i < 6; ++i) a(i, j) -= a(i, k) * a(k, j);
-  }
-  return true;
-}
-
-// x := A^-1 x with factorPivotBlock's factors.
-template <class Vector>
-void solvePivotBlock(const Matrix6& lu, const std::array<int, 6>& transpositions, Vector&& x) {
-  for (int k = 0; k < 6; ++k)
-    if (transpositions[k] != k) std::swap(x[k], x[transpositions[k]]);
-  for (int k = 0; k < 6; ++k)
-    for (int i = k + 1; i < 6; ++i) x[i] -= lu(i, k) * x[k];
-  for (int k = 5; k >= 0; --k) {
-    x[k] /= lu(k, k);
-    for (int i = 0; i < k; ++i) x[i] -= lu(i, k) * x[k];
-  }
-}
 
 }  // namespace
 
@@ -212,7 +182,8 @@ bool BodySpaceNewtonSolve::blockLu(const BodySpaceDelassus& W) {
   for (int k = 0; k < nb; ++k) {
     Matrix6& lu = pivotLu_[k];
     lu = block(k, k);
-    if (!factorPivotBlock(lu, pivotRows_[k])) return false;
+    smallLuInPlace(lu.data(), 6, 6, pivotRows_[k].data());
+    if (!smallLuPivotsUsable(lu.data(), 6, 6)) return false;
     int belowCount = 0, rightCount = 0;
     for (int i = k + 1; i < nb; ++i) {
       if (nz(i, k)) below_[belowCount++] = i;
@@ -220,7 +191,8 @@ bool BodySpaceNewtonSolve::blockLu(const BodySpaceDelassus& W) {
     }
     for (int r = 0; r < rightCount; ++r) {
       Block6 kj = block(k, right_[r]);
-      for (int c = 0; c < 6; ++c) solvePivotBlock(lu, pivotRows_[k], kj.col(c));
+      for (int c = 0; c < 6; ++c)
+        smallLuSolve(lu.data(), 6, 6, pivotRows_[k].data(), kj.col(c).data());
     }
     for (int a = 0; a < belowCount; ++a) {
       const int i = below_[a];
@@ -253,7 +225,7 @@ void BodySpaceNewtonSolve::blockSolve(Eigen::VectorXd& z) const {
     Eigen::Matrix<double, 6, 1> v = z.segment<6>(6 * k);
     for (int i = 0; i < k; ++i)
       if (nz(k, i)) v.noalias() -= block(k, i) * z.segment<6>(6 * i);
-    solvePivotBlock(pivotLu_[k], pivotRows_[k], v);
+    smallLuSolve(pivotLu_[k].data(), 6, 6, pivotRows_[k].data(), v.data());
     z.segment<6>(6 * k) = v;
   }
   for (int k = nb - 1; k >= 0; --k) {

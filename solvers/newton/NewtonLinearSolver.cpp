@@ -1,5 +1,7 @@
 #include <coulomb/solvers/newton/NewtonLinearSolver.hpp>
 
+#include <coulomb/solvers/newton/SmallLu.hpp>
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -10,50 +12,6 @@ namespace {
 
 // Eigen's PartialPivLU factors matrices up to this size without blocking.
 constexpr int kUnblockedLuSize = 16;
-
-// P A = L U in place, column-major with leading dimension lda, partial pivoting by rows: the
-// algorithm of Eigen's unblocked PartialPivLU (the same operations in the same order), written
-// out for the small systems of the dense path, where Eigen's dynamic-size column and outer
-// products cost several times the arithmetic. A zero pivot leaves its column unscaled (as Eigen);
-// the caller's residual check rejects the solve.
-void luInPlace(double* a, Eigen::Index lda, int m, int* transpositions) {
-  for (int k = 0; k < m; ++k) {
-    double* colK = a + k * lda;
-    int pivot = k;
-    double biggest = std::abs(colK[k]);
-    for (int i = k + 1; i < m; ++i)
-      if (std::abs(colK[i]) > biggest) {
-        biggest = std::abs(colK[i]);
-        pivot = i;
-      }
-    transpositions[k] = pivot;
-    if (pivot != k)
-      for (int j = 0; j < m; ++j) std::swap(a[j * lda + k], a[j * lda + pivot]);
-    if (biggest == 0.0) continue;
-    const double diagonal = colK[k];
-    for (int i = k + 1; i < m; ++i) colK[i] /= diagonal;
-    for (int j = k + 1; j < m; ++j) {
-      double* colJ = a + j * lda;
-      const double factor = colJ[k];
-      for (int i = k + 1; i < m; ++i) colJ[i] -= colK[i] * factor;
-    }
-  }
-}
-
-// x := U^-1 L^-1 x for the factors of luInPlace (row transpositions already applied to x).
-void luSolveInPlace(const double* a, Eigen::Index lda, int m, double* x) {
-  for (int k = 0; k < m; ++k) {  // L unit lower, by columns
-    const double xk = x[k];
-    const double* colK = a + k * lda;
-    for (int i = k + 1; i < m; ++i) x[i] -= colK[i] * xk;
-  }
-  for (int k = m - 1; k >= 0; --k) {  // U upper, by columns
-    const double* colK = a + k * lda;
-    x[k] /= colK[k];
-    const double xk = x[k];
-    for (int i = 0; i < k; ++i) x[i] -= colK[i] * xk;
-  }
-}
 
 }  // namespace
 
@@ -238,9 +196,9 @@ bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vec
     lu = J;
     x = rhs;
     if (m <= kUnblockedLuSize) {
-      luInPlace(lu.data(), lu.outerStride(), m, transpositions_.data());
+      smallLuInPlace(lu.data(), lu.outerStride(), m, transpositions_.data());
       for (int i = 0; i < m; ++i) std::swap(x[i], x[transpositions_[static_cast<std::size_t>(i)]]);
-      luSolveInPlace(lu.data(), lu.outerStride(), m, x.data());
+      smallLuSolveInPlace(lu.data(), lu.outerStride(), m, x.data());
     } else {
       int transpositionCount = 0;
       Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>::blocked_lu(
@@ -285,7 +243,7 @@ bool NewtonLinearSolver::solveAgain(const Eigen::VectorXd& rhsIn, Eigen::VectorX
     x = rhs;
     for (int i = 0; i < m; ++i) std::swap(x[i], x[transpositions_[static_cast<std::size_t>(i)]]);
     if (m <= kUnblockedLuSize) {
-      luSolveInPlace(lu.data(), lu.outerStride(), m, x.data());
+      smallLuSolveInPlace(lu.data(), lu.outerStride(), m, x.data());
     } else {
       lu.triangularView<Eigen::UnitLower>().solveInPlace(x);
       lu.triangularView<Eigen::Upper>().solveInPlace(x);
