@@ -151,6 +151,18 @@ void BlockSparseMatrix::multiplyAdd(const Eigen::VectorXd& x, Eigen::VectorXd& y
         const int sj = blockSize_[col_[k]];
         const double* v = values_.data() + valueStart_[k];
         const double* xj = xs + blockOffset_[col_[k]];
+        if (sj == 3) {  // contact by contact, written out: the same terms in the same order
+          y0 += v[0] * xj[0];
+          y1 += v[3] * xj[0];
+          y2 += v[6] * xj[0];
+          y0 += v[1] * xj[1];
+          y1 += v[4] * xj[1];
+          y2 += v[7] * xj[1];
+          y0 += v[2] * xj[2];
+          y1 += v[5] * xj[2];
+          y2 += v[8] * xj[2];
+          continue;
+        }
         for (int c = 0; c < sj; ++c) {
           y0 += v[c] * xj[c];
           y1 += v[sj + c] * xj[c];

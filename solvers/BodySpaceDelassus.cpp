@@ -22,6 +22,7 @@ void BodySpaceDelassus::reset(int bodyCount) {
   finitenessKnown_ = false;
   entriesValid_ = false;
   diagonal_.clear();
+  couplings_.clear();
   offset_.assign(size_.size() + 1, 0);
   for (std::size_t b = 0; b < size_.size(); ++b) {
     if (size_[b] != 1 && size_[b] != 3)
@@ -43,6 +44,7 @@ void BodySpaceDelassus::gather(const int* blocks, int count, BodySpaceDelassus& 
   out.finite_ = finite_;
   out.entriesValid_ = false;
   out.diagonal_.clear();
+  out.couplings_.clear();
   out.offset_.resize(count + 1);
   out.offset_[0] = 0;
   for (int i = 0; i < count; ++i) out.offset_[i + 1] = out.offset_[i] + out.size_[i];
@@ -94,6 +96,7 @@ void BodySpaceDelassus::setSide(int block, int side, int body,
   body_[2 * block + side] = body;
   entriesValid_ = false;
   diagonal_.clear();
+  couplings_.clear();
 }
 
 void BodySpaceDelassus::setSide(int block, int side, int body, const double* J, const double* G) {
@@ -109,6 +112,7 @@ void BodySpaceDelassus::setSide(int block, int side, int body, const double* J, 
   }
   entriesValid_ = false;
   diagonal_.clear();
+  couplings_.clear();
 }
 
 void BodySpaceDelassus::bodyVelocities(const Eigen::VectorXd& x, Eigen::VectorXd& dv) const {
@@ -133,6 +137,28 @@ const std::vector<double>& BodySpaceDelassus::diagonalBlocks() const {
     for (int b = 0; b < blockCount(); ++b) computeDiagonalBlock(b, &diagonal_[9 * b]);
   }
   return diagonal_;
+}
+
+const double* BodySpaceDelassus::sideCouplings(int b) const {
+  if (couplings_.empty() && blockCount() > 0) {
+    couplings_.assign(144 * size_.size(), 0.0);
+    for (int block = 0; block < blockCount(); ++block) {
+      if (size_[block] != 3) continue;
+      const int row = offset_[block];
+      for (int s = 0; s < 2; ++s)
+        for (int t = 0; t < 2; ++t) {
+          if (body_[2 * block + s] < 0 || body_[2 * block + t] < 0) continue;
+          double* c = &couplings_[144 * static_cast<std::size_t>(block) + 36 * (2 * s + t)];
+          for (int a = 0; a < 3; ++a) {  // sum over the rows of g_a j_a^T
+            const double* g = G(row + a, s);
+            const double* j = J(row + a, t);
+            for (int col = 0; col < 6; ++col)
+              for (int r = 0; r < 6; ++r) c[6 * col + r] += g[r] * j[col];
+          }
+        }
+    }
+  }
+  return &couplings_[144 * static_cast<std::size_t>(b)];
 }
 
 void BodySpaceDelassus::computeDiagonalBlock(int b, double* out) const {

@@ -83,6 +83,11 @@ class BodySpaceDelassus {
   /// Every W_bb, row-major k x k at 9 b; computed once on the first call (validation, the
   /// chooser and the prepared problem all read them) and kept until a setSide.
   [[nodiscard]] const std::vector<double>& diagonalBlocks() const;
+  /// Block b's couplings G_s J_t (s, t = 0, 1: 6 x 6 column-major at 36 (2 s + t)), the block's
+  /// terms of M^-1 J^T J, for a 3-row block with both terms' sides set: the Newton step in body
+  /// space adds them, over its shift, for every sticking contact (BodySpaceNewtonSolve). Computed
+  /// for every block on the first call and kept until a side is set.
+  [[nodiscard]] const double* sideCouplings(int b) const;
   /// The listed blocks, in that order, as an operator of their own on the same bodies: block i
   /// of `out` is block blocks[i] here (a sweep's blocks made contiguous in memory, so that a
   /// sweep in that order streams them). Reuses out's storage.
@@ -130,7 +135,8 @@ class BodySpaceDelassus {
   mutable BlockSparseMatrix entries_;
   mutable bool entriesValid_ = false;
   mutable CsrScratch csr_;
-  mutable std::vector<double> diagonal_;  // diagonalBlocks() cache, 9 per block
+  mutable std::vector<double> diagonal_;   // diagonalBlocks() cache, 9 per block
+  mutable std::vector<double> couplings_;  // sideCouplings() cache, 144 per block
   // multiplyAdd's dv, kept for its storage: like the caches above, a const call writes it, so one
   // operator is not for two threads at once.
   mutable Eigen::VectorXd productVelocities_;

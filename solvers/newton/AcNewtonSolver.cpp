@@ -22,7 +22,8 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
   double sigma = o.proximalInitialShift * meanDiag;
   Eigen::VectorXd &u = scratch.u, &best = scratch.best, &x = scratch.x;
   best = r;
-  double e = p.residual(r, u), bestE = e;
+  double eAbsolute = 0.0;
+  double e = p.residual(r, u, &eAbsolute), bestE = e;
   PreparedProblem& inner = scratch.inner;
   inner = p;
   // One workspace (and linear solver) for all subproblems: W + sigma I keeps W's structure, so
@@ -38,6 +39,15 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     inner.q = p.q;
     inner.q -= sigma * r;
     inner.qNorm = plainNorm(inner.q);
+    // The subproblem's start is r, where its u = (W + sigma I) r + q - sigma r is the problem's:
+    // handed over, not computed again (the same absolute residual, relative to the new q).
+    PreparedProblem::KnownEvaluation& start = inner.start;
+    start.known = !inner.bodySpace;
+    start.r = r;
+    start.u = u;
+    start.absolute = eAbsolute;
+    start.residual = eAbsolute / (1.0 + inner.qNorm);
+    start.inBodySpace = false;
     SolverOptions innerOptions = context.options();
     innerOptions.tolerance = std::max(tol / 10, std::min(1e-2, e / 10));
     innerOptions.recordHistory = false;
@@ -54,7 +64,7 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     if (innerReport.timeLimitReached) report.timeLimitReached = true;
     if (!x.allFinite()) break;
     r = x;
-    e = p.residual(r, u);
+    e = p.residual(r, u, &eAbsolute);
     context.record(report, report.iterations + used, e);
     if (e < bestE) bestE = e, best = r;
     // The shift falls by at most proximalShrink per subproblem: that far after an easy one,

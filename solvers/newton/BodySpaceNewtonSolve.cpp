@@ -28,17 +28,59 @@ bool invertBlock(const Eigen::Matrix3d& D, int k, Eigen::Matrix3d& inverse) {
 
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
+// A sticking contact (5.3a, 5.4a): A = diag(rho_N, rho_T, rho_T), B = 0.
+bool sticks(const NewtonBlockJacobian& jac) {
+  const Eigen::Matrix3d& A = jac.A;
+  return jac.B.isZero(0.0) && A(0, 1) == 0.0 && A(0, 2) == 0.0 && A(1, 0) == 0.0 &&
+         A(1, 2) == 0.0 && A(2, 0) == 0.0 && A(2, 1) == 0.0 && A(0, 0) != 0.0 && A(1, 1) != 0.0 &&
+         A(2, 2) != 0.0;
+}
+
 }  // namespace
 
-double BodySpaceNewtonSolve::bodySpaceCost(const BodySpaceDelassus& W) {
-  const double m = 6.0 * W.bodyCount();
-  double blocks = 0.0;  // per block of k rows on s sides: F = E_b J_b, s k^2 6, then G F, s^2 36 k
+double BodySpaceNewtonSolve::bodySpaceCost(const BodySpaceDelassus& W,
+                                           const std::vector<NewtonBlockJacobian>& jac,
+                                           double eliminationFlops) const {
+  double forming = 0.0;  // per block of k rows on s sides
   for (int b = 0; b < W.blockCount(); ++b) {
     const double k = W.blockSize(b);
     const double s = (W.blockBody(b, 0) >= 0 ? 1.0 : 0.0) + (W.blockBody(b, 1) >= 0 ? 1.0 : 0.0);
-    blocks += 2.0 * (s * k * k * 6.0 + s * s * 36.0 * k);
+    if (jac[b].A.isZero(0.0)) continue;  // open
+    if (W.blockSize(b) == 3 && sticks(jac[b]))
+      forming += 2.0 * s * s * 36.0;  // the couplings over the shift
+    else
+      forming += 2.0 * (s * k * k * 6.0 + s * s * 36.0 * k);  // F = E_b J_b, then G F
   }
-  return 2.0 / 3.0 * m * m * m + blocks;
+  return forming + eliminationFlops;
+}
+
+double BodySpaceNewtonSolve::eliminationFlops(const BodySpaceDelassus& W) {
+  const int nb = W.bodyCount();
+  if (static_cast<int>(below_.size()) < nb) {
+    below_.resize(nb);
+    right_.resize(nb);
+  }
+  graph_.assign(static_cast<std::size_t>(nb) * nb, 0);
+  const auto at = [&](int i, int j) -> char& {
+    return graph_[static_cast<std::size_t>(i) * nb + j];
+  };
+  for (int b = 0; b < W.blockCount(); ++b) {
+    const int s = W.blockBody(b, 0), t = W.blockBody(b, 1);
+    if (s >= 0 && t >= 0) at(s, t) = at(t, s) = 1;
+  }
+  constexpr double pivotLu = 2.0 / 3.0 * 216.0, blockSolve = 2.0 * 216.0, schur = 2.0 * 216.0;
+  double flops = 0.0;
+  for (int k = 0; k < nb; ++k) {
+    int belowCount = 0, rightCount = 0;
+    for (int i = k + 1; i < nb; ++i) {
+      if (at(i, k)) below_[belowCount++] = i;
+      if (at(k, i)) right_[rightCount++] = i;
+    }
+    flops += pivotLu + rightCount * blockSolve + belowCount * rightCount * schur;
+    for (int a = 0; a < belowCount; ++a)
+      for (int r = 0; r < rightCount; ++r) at(below_[a], right_[r]) = 1;  // fill
+  }
+  return flops;
 }
 
 double BodySpaceNewtonSolve::contactSpaceCost(int keptRows) {
@@ -61,19 +103,58 @@ bool BodySpaceNewtonSolve::factor(const BodySpaceDelassus& W, const std::vector<
   }
   using Block = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
   Block K(k_.data(), m, m, Eigen::OuterStride<>(k_.rows()));
-  K.setIdentity();
+  // K's 6 x 6 blocks on the body graph (the only ones set; blockLu adds its fill): I, plus the
+  // terms of M^-1 J^T E J below.
+  const int nb = W.bodyCount();
+  nonzero_.assign(static_cast<std::size_t>(nb) * nb, 0);
+  for (int i = 0; i < nb; ++i) nonzero_[static_cast<std::size_t>(i) * nb + i] = 1;
+  for (int b = 0; b < blocks; ++b) {
+    const int s = W.blockBody(b, 0), t = W.blockBody(b, 1);
+    if (s < 0 || t < 0) continue;
+    nonzero_[static_cast<std::size_t>(s) * nb + t] =
+        nonzero_[static_cast<std::size_t>(t) * nb + s] = 1;
+  }
+  for (int j = 0; j < nb; ++j)
+    for (int i = 0; i < nb; ++i)
+      if (nonzero_[static_cast<std::size_t>(i) * nb + j] != 0) {
+        if (i == j)
+          K.block<6, 6>(6 * i, 6 * j).setIdentity();
+        else
+          K.block<6, 6>(6 * i, 6 * j).setZero();
+      }
+  const double inverseShift = 1.0 / shift;
   for (int b = 0; b < blocks; ++b) {
     const int k = W.blockSize(b);
-    const Eigen::Matrix3d D = jac[b].B + shift * jac[b].A;
+    const Eigen::Matrix3d& A = jac[b].A;
+    const int row0 = offset[b];
+    if (k == 3 && sticks(jac[b])) {
+      // Sticking: D_b = s A_b and E_b = I / s; the
+      // block adds its couplings G_s J_t over s, which depend on the factors alone (cached there).
+      dInverse_[b] = (shift * A.diagonal()).cwiseInverse().asDiagonal();
+      if (!dInverse_[b].allFinite()) return false;
+      e_[b] = inverseShift * Eigen::Matrix3d::Identity();
+      const double* couplings = W.sideCouplings(b);
+      for (int t = 0; t < 2; ++t) {
+        const int bodyT = W.blockBody(b, t);
+        if (bodyT < 0) continue;
+        for (int s = 0; s < 2; ++s) {
+          const int bodyS = W.blockBody(b, s);
+          if (bodyS < 0) continue;
+          K.block<6, 6>(6 * bodyS, 6 * bodyT) +=
+              inverseShift * Matrix6::Map(couplings + 36 * (2 * s + t));
+        }
+      }
+      continue;
+    }
+    const Eigen::Matrix3d D = jac[b].B + shift * A;
     if (!invertBlock(D, k, dInverse_[b])) return false;
     if (k == 3) {
-      e_[b].noalias() = dInverse_[b] * jac[b].A;
+      e_[b].noalias() = dInverse_[b] * A;
     } else {
       e_[b].setZero();
-      e_[b](0, 0) = dInverse_[b](0, 0) * jac[b].A(0, 0);
+      e_[b](0, 0) = dInverse_[b](0, 0) * A(0, 0);
     }
-    const int row0 = offset[b];
-    if (jac[b].A.isZero(0.0)) continue;  // E_b = 0 (an open contact): nothing in K
+    if (A.isZero(0.0)) continue;  // E_b = 0 (an open contact): nothing in K
     if (k == 3) {  // a contact: fixed-size products (the rows of one side are 12 doubles apart)
       using Rows =
           Eigen::Map<const Eigen::Matrix<double, 3, 6, Eigen::RowMajor>, 0, Eigen::OuterStride<12>>;
@@ -148,22 +229,14 @@ void BodySpaceNewtonSolve::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
 }
 
 // K = L U by 6 x 6 blocks in the bodies' order, skipping the blocks that are zero in K and stay
-// zero (K's pattern is the island's body graph: a column of boxes is block-tridiagonal and its
-// factors keep that pattern), pivoting inside each diagonal block: M K = M + J^T E J is symmetric
-// positive definite where the contacts stick (E = I / (s rho)), so the diagonal blocks are the
-// natural pivots; the caller's residual check covers the rest. Right-looking: after step k,
-// K_kj (j > k) holds K_kk^-1 K_kj and the blocks below and right of k are Schur-updated.
+// zero (K's pattern, nonzero_ as factor set it, is the island's body graph: a column of boxes is
+// block-tridiagonal and its factors keep that pattern), pivoting inside each diagonal block: M K =
+// M + J^T E J is symmetric positive definite where the contacts stick (E = I / s), so the diagonal
+// blocks are the natural pivots; the caller's residual check covers the rest. Right-looking: after
+// step k, K_kj (j > k) holds K_kk^-1 K_kj and the blocks below and right of k are Schur-updated.
 bool BodySpaceNewtonSolve::blockLu(const BodySpaceDelassus& W) {
   const int nb = W.bodyCount(), m = 6 * nb;
   const Eigen::Index lda = k_.rows();
-  nonzero_.assign(static_cast<std::size_t>(nb) * nb, 0);
-  for (int i = 0; i < nb; ++i) nonzero_[static_cast<std::size_t>(i) * nb + i] = 1;
-  for (int b = 0; b < W.blockCount(); ++b) {
-    const int s = W.blockBody(b, 0), t = W.blockBody(b, 1);
-    if (s < 0 || t < 0) continue;
-    nonzero_[static_cast<std::size_t>(s) * nb + t] =
-        nonzero_[static_cast<std::size_t>(t) * nb + s] = 1;
-  }
   if (static_cast<int>(pivotLu_.size()) < nb) {
     pivotLu_.resize(nb);
     pivotRows_.resize(nb);

@@ -28,11 +28,17 @@ class BodySpaceNewtonSolve {
               const std::vector<NewtonBlockJacobian>& jac, double shift);
   /// x = J_s^-1 b with the last factors (b and x: W.size() entries, x is resized once).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
-  /// Flops of a factorization in body space and of the contact-space LU of `keptRows` rows (the
-  /// leading terms: (2/3) n^3 for each LU, and forming K block by block): the caller takes the
-  /// cheaper.
-  static double bodySpaceCost(const BodySpaceDelassus& W);
+  /// Flops of a factorization in body space and of the contact-space LU of `keptRows` rows (its
+  /// leading term (2/3) n^3): the caller takes the cheaper. In body space: forming K for the
+  /// blocks' A and B (nothing for an open contact, the cached couplings for a sticking one,
+  /// E J and G E J otherwise) plus K's block LU (eliminationFlops).
+  double bodySpaceCost(const BodySpaceDelassus& W, const std::vector<NewtonBlockJacobian>& jac,
+                       double eliminationFlops) const;
   static double contactSpaceCost(int keptRows);
+  /// Flops of K's block LU over W's body graph with the fill of elimination in the bodies'
+  /// order: per pivot its 6 x 6 LU, the solves of its row's blocks and the Schur updates. Depends
+  /// on W's partition alone (the caller keeps it for a run).
+  double eliminationFlops(const BodySpaceDelassus& W);
 
  private:
   const BodySpaceDelassus* W_ = nullptr;
@@ -48,6 +54,7 @@ class BodySpaceNewtonSolve {
   std::vector<Eigen::Matrix<double, 6, 6>> pivotLu_;  // the pivot blocks' P A = L U
   std::vector<std::array<int, 6>> pivotRows_;         // ... and their row transpositions
   std::vector<int> below_, right_;
+  std::vector<char> graph_;  // eliminationFlops' symbolic pattern
   int m_ = 0;
   Eigen::VectorXd y_, g_, jz_;
 };

@@ -110,16 +110,36 @@ TEST(BodySpaceNewtonSolve, RefusesAZeroShift) {
   EXPECT_TRUE(solve.factor(*problem.W.bodySpaceOperator(), prepared.offset, jac, 1e-6));
 }
 
-// The cost rule: 60 velocities against 120 contact rows takes body space, one box on the ground
-// (6 velocities, 12 rows) keeps the contact-space LU, whose 12 x 12 factorization is cheaper than
-// forming K.
+// The cost rule: 60 velocities against 120 sticking contact rows takes body space, and so does
+// the same tower with every contact slipping; one box on the ground (6 velocities, 12 rows)
+// slipping keeps the contact-space LU, whose 12 x 12 factorization is cheaper than forming K.
+// Open contacts add nothing to K.
 TEST(BodySpaceNewtonSolve, TakesBodySpaceWhenItHasFewerUnknownsAndEnoughBlocks) {
-  const auto cost = [](int boxes) {
+  const auto cost = [](int boxes, const NewtonBlockJacobian& each) {
     const ContactProblem problem = coulomb::solvers::testing::tower(boxes, 0.5);
-    return BodySpaceNewtonSolve::bodySpaceCost(*problem.W.bodySpaceOperator());
+    const BodySpaceDelassus& W = *problem.W.bodySpaceOperator();
+    BodySpaceNewtonSolve solve;
+    const std::vector<NewtonBlockJacobian> jac(static_cast<std::size_t>(W.blockCount()), each);
+    return solve.bodySpaceCost(W, jac, solve.eliminationFlops(W));
   };
-  EXPECT_LT(cost(10), BodySpaceNewtonSolve::contactSpaceCost(120));
-  EXPECT_GT(cost(1), BodySpaceNewtonSolve::contactSpaceCost(12));
+  NewtonBlockJacobian sticking, slipping, open;
+  sticking.A = Eigen::Vector3d(2.0, 3.0, 3.0).asDiagonal();
+  sticking.B.setZero();
+  slipping.A << 2.0, 0.0, 0.0, 0.1, 0.5, 0.2, 0.1, 0.2, 0.5;
+  slipping.B << 0.0, 0.0, 0.0, -0.1, 0.6, 0.1, -0.1, 0.1, 0.6;
+  open.A.setZero();
+  open.B.setIdentity();
+  EXPECT_LT(cost(10, sticking), BodySpaceNewtonSolve::contactSpaceCost(120));
+  EXPECT_LT(cost(10, slipping), BodySpaceNewtonSolve::contactSpaceCost(120));
+  EXPECT_LT(cost(10, sticking), cost(10, slipping));
+  EXPECT_GT(cost(1, slipping), BodySpaceNewtonSolve::contactSpaceCost(12));
+  BodySpaceNewtonSolve solve;
+  const ContactProblem column = coulomb::solvers::testing::tower(10, 0.5);
+  const double elimination = solve.eliminationFlops(*column.W.bodySpaceOperator());
+  EXPECT_NEAR(elimination, 10 * (144.0 + 432.0 + 432.0) - 432.0 - 432.0, 1e-9);  // tridiagonal
+  const std::vector<NewtonBlockJacobian> allOpen(
+      static_cast<std::size_t>(column.W.bodySpaceOperator()->blockCount()), open);
+  EXPECT_EQ(solve.bodySpaceCost(*column.W.bodySpaceOperator(), allOpen, elimination), elimination);
 }
 
 // In the Newton loop: a 10-box tower pushed sideways at the top (its contacts stick, slide and
