@@ -10,10 +10,10 @@
 
 namespace coulomb::solvers {
 
-// sqrt(a^2 + b^2) for the Gauss-Seidel inner loops: the plain formula when a^2 + b^2 neither
-// overflows nor underflows (then within an ulp or two of std::hypot, which pays for the scaling
-// on every call: 24 % of a pgs sweep), std::hypot otherwise. The common residual keeps std::hypot
-// (bit-identical to fc3d_natural_map_residual).
+// sqrt(a^2 + b^2) for the inner loops (Gauss-Seidel sweeps, the Alart-Curnier function): the plain
+// formula when a^2 + b^2 neither overflows nor underflows (then within an ulp or two of std::hypot,
+// which pays for the scaling on every call: 24 % of a pgs sweep), std::hypot otherwise. The common
+// residual keeps std::hypot (bit-identical to fc3d_natural_map_residual).
 inline double sweepNorm(double a, double b) {
   const double s = a * a + b * b;
   if (s >= 1e-290 && s <= 1e290) return std::sqrt(s);

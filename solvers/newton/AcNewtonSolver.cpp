@@ -115,7 +115,11 @@ void AcNewtonSolver::solvePrepared(const PreparedProblem& p, const SolveContext&
     proximalLoop(p, function, options_, context, budget, r, report, workspace_, proximal_);
     return;
   }
-  runNonsmoothNewton(p, function, options_.newton, context, budget, r, report, &workspace_);
+  // Plain Newton first; with the proximal loop to hand over to, a return to the watchdog point
+  // (full steps that led nowhere: a degenerate answer) ends it at once (watchdogReturnStalls).
+  NewtonSettings plain = options_.newton;
+  plain.watchdogReturnStalls = options_.proximalOnStall && options_.handOverOnWatchdogReturn;
+  runNonsmoothNewton(p, function, plain, context, budget, r, report, &workspace_);
   // Stall restart (hybrid (b) inside the solver, docs/solver-derivations.md section 5; Siconos'
   // NSN_AND_PLI_NSN_LOOP): a stalled Newton sits in a local minimum of psi = 1/2 ||Phi||^2 that
   // is no solution, typically on the kink ||y_T|| = delta of one contact, where the Newton

@@ -26,6 +26,11 @@ struct AcNewtonOptions {
   // r_{k+1} solves FC(W + s_k I, q - s_k r_k) by the same Newton. Default on: it solved the
   // Kaplas tower in the prototypes where plain Newton (with (5.8)) did not.
   bool proximalOnStall = true;
+  // With proximalOnStall: plain Newton ends at its first return to the watchdog point (full
+  // steps that led nowhere, NewtonSettings::watchdogReturnStalls) and the stall handling below
+  // takes over. Measured on box_pile_1000's landing: ~10 plain iterations where the stall tests
+  // needed ~20 (docs/solvers.md "Watchdog Newton").
+  bool handOverOnWatchdogReturn = true;
   // When Newton stalls, restart it at most this many times from the point reached by
   // `restartSweeps` bgs sweeps from its best iterate (before the proximal point): a stall is a
   // local minimum of psi = 1/2 ||Phi||^2 that no descent on psi leaves (docs/solvers.md,

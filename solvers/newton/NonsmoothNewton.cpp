@@ -481,6 +481,12 @@ void runNonsmoothNewton(const PreparedProblem& p, const NewtonFunction& function
         e = watchE;
         searchNext = true;
         ++returns;
+        if (s.watchdogReturnStalls) {
+          report.status = SolverStatus::Stalled;
+          report.note("watchdog return: handed over");
+          ++k;
+          break;
+        }
         continue;
       }
     }

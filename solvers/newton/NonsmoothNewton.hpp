@@ -44,6 +44,12 @@ struct NewtonSettings {
   // 5 solves 94, 10 all 100 (monotone: 73); each return costs this many iterations (Rover4493:
   // 4 -> 15). 0: monotone.
   int watchdogSteps = 10;
+  // A return to the watchdog point ends the run as Stalled ("watchdog return"): for a caller with
+  // a method for degenerate problems to hand over to (ac_newton's proximal loop, 5.9). The return
+  // says the full steps led nowhere from there; the monotone search that would follow creeps
+  // along the same kinks until the stall test ends it, 20 iterations later on box_pile_1000's
+  // landing columns (docs/solvers.md "Watchdog Newton").
+  bool watchdogReturnStalls = false;
   int stallIterations = 20;     // (5.12): Stalled when the best e_rel fell by < 1 % ...
   double stallDecrease = 0.01;  // ... over this many iterations
   // Linear solve of each step (NewtonLinearSolver): dense LU up to `denseThreshold` unknowns left

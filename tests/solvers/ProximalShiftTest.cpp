@@ -54,16 +54,26 @@ TEST(ProximalShift, ShrinksAfterEasySubproblemsOnAPileColumn) {
 // its watchdog, each return gaining ~2 %, so the old stall test (less than 1 % in 20 iterations)
 // never fired and ac_newton ended its 200 iterations at 7.2e-4 with no time left for the proximal
 // loop. The rate test sees that 2 % per cycle cannot reach 1e-6 in the iterations left and hands
-// over; the proximal loop converges (measured: 67 iterations in all).
+// over; the proximal loop converges (measured: 67 iterations in all). The first return to the
+// watchdog point hands over sooner (AcNewtonOptions::handOverOnWatchdogReturn): fewer iterations.
 TEST(NewtonStall, ARateTooSlowForTheBudgetHandsOverToTheProximalLoop) {
   const ContactProblem p = fixtures::loadCapturedProblem("box_pile_1000_step31_island18");
   SolverOptions o;
   o.tolerance = 1e-6;
-  const SolveOutcome out = AcNewtonSolver().solve(p, o);
+  AcNewtonOptions byRate;
+  byRate.handOverOnWatchdogReturn = false;
+  const SolveOutcome out = AcNewtonSolver(byRate).solve(p, o);
   EXPECT_EQ(out.report.status, SolverStatus::Converged) << out.report.message;
   EXPECT_LE(out.report.residual, 1e-6);
   EXPECT_LT(out.report.iterations, 150) << out.report.message;
   EXPECT_NE(out.report.message.find("falls too slowly"), std::string::npos) << out.report.message;
+
+  const SolveOutcome handedOver = AcNewtonSolver().solve(p, o);
+  EXPECT_EQ(handedOver.report.status, SolverStatus::Converged) << handedOver.report.message;
+  EXPECT_LE(handedOver.report.residual, 1e-6);
+  EXPECT_NE(handedOver.report.message.find("watchdog return: handed over"), std::string::npos)
+      << handedOver.report.message;
+  EXPECT_LT(handedOver.report.iterations, out.report.iterations) << handedOver.report.message;
 
   // The plain Newton loop alone: Stalled (the rate), well before its 200 iterations.
   fixtures::PlainNewtonRun run;
