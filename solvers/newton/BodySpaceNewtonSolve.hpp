@@ -53,6 +53,8 @@ class BodySpaceNewtonSolve {
   std::vector<char> nonzero_;
   std::vector<Eigen::Matrix<double, 6, 6>> pivotLu_;  // the pivot blocks' P A = L U
   std::vector<std::array<int, 6>> pivotRows_;         // ... and their row transpositions
+  std::vector<std::array<int, 6>> pivotOrder_;        // ... as one row order
+  std::vector<std::array<double, 6>> pivotInverse_;   // ... and 1 / U_kk
   std::vector<int> below_, right_;
   std::vector<char> graph_;  // eliminationFlops' symbolic pattern
   int m_ = 0;

@@ -209,8 +209,11 @@ class NewtonSystem {
     double last = std::numeric_limits<double>::infinity();
     for (int refinement = 0;; ++refinement) {
       if (!x.allFinite()) return false;
-      wx.setZero(p_.size());  // W x, kept for the caller (wdOfD) when x is the answer
-      p_.W.multiplyAdd(x, wx);
+      // W x, kept for the caller (wdOfD) when x is the answer; through the factors (J, M^-1 J^T:
+      // fewer products than W's 3 x 3 blocks of every pair of contacts on a body).
+      wx.setZero(p_.size());
+      p_.factors->multiplyAdd(x, wx);
+      if (p_.factorsShift != 0.0) wx += p_.factorsShift * x;
       shifted = wx + sigma * x;
       applyAB(shifted, x, jd);
       check = rhs - jd;
