@@ -244,6 +244,20 @@ BlockSparseMatrix BlockSparseMatrix::scaledSymmetric(const Eigen::VectorXd& scal
   return out;
 }
 
+void BlockSparseMatrix::assignShiftedDiagonal(const BlockSparseMatrix& base, double s) {
+  if (base.blockCount() != blockCount() || base.values_.size() != values_.size() ||
+      base.diagonal_ != diagonal_)
+    throw std::logic_error("assignShiftedDiagonal: not the base matrix's structure");
+  for (int b = 0; b < blockCount(); ++b) {
+    if (diagonal_[b] < 0) throw std::logic_error("assignShiftedDiagonal: missing diagonal block");
+    const auto first = static_cast<std::size_t>(valueStart_[diagonal_[b]]);
+    for (int a = 0; a < blockSize_[b]; ++a) {
+      const std::size_t at = first + static_cast<std::size_t>((blockSize_[b] + 1) * a);
+      values_[at] = base.values_[at] + s;
+    }
+  }
+}
+
 void BlockSparseMatrix::addToDiagonal(double s) {
   for (int b = 0; b < blockCount(); ++b) {
     if (diagonal_[b] < 0) throw std::logic_error("addToDiagonal: missing diagonal block");

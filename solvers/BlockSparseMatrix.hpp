@@ -67,6 +67,10 @@ class BlockSparseMatrix {
   [[nodiscard]] BlockSparseMatrix scaledSymmetric(const Eigen::VectorXd& scale) const;
   // Adds s to every diagonal entry (blocks (b, b) must be stored).
   void addToDiagonal(double s);
+  /// The diagonal entries of `base` + s written over this matrix's, whose other entries and
+  /// structure are base's (a copy of base, shifted before): the same numbers as a new copy of
+  /// base with addToDiagonal(s), without copying the off-diagonal blocks again.
+  void assignShiftedDiagonal(const BlockSparseMatrix& base, double s);
 
  private:
   void indexBlockCsr();  // offsets, value starts and diagonal from the CSR arrays; validates

@@ -33,8 +33,7 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
   while (used < budget && bestE > tol) {
     if (context.timeUp(report)) break;
     ++outer;
-    inner.W = p.W;
-    inner.W.addToDiagonal(sigma);
+    inner.W.assignShiftedDiagonal(p.W, sigma);  // inner.W is p.W's copy (inner = p)
     inner.factorsShift = p.factorsShift + sigma;
     inner.q = p.q;
     inner.q -= sigma * r;
