@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 #include <coulomb/solvers/BlockSparseMatrix.hpp>
 
+#include <stdexcept>
+
 using namespace coulomb::solvers;
 
 namespace {
@@ -69,4 +71,19 @@ TEST(BlockSparseMatrix, FromBlockCsrRejectsInconsistentArrays) {
   EXPECT_THROW(BlockSparseMatrix::fromBlockCsr({1, 1}, {0, 2, 2}, {1, 0}, {1.0, 1.0}),
                std::invalid_argument);  // columns not increasing
   EXPECT_THROW(BlockSparseMatrix::fromBlockCsr({3}, {0, 1}, {1}, nine), std::invalid_argument);
+}
+
+// The proximal loop's W + s I written over a copy of W: the same numbers as a fresh copy with
+// addToDiagonal, for every shift in turn; a matrix of another structure is refused.
+TEST(BlockSparseMatrix, ShiftedDiagonalOverACopyEqualsANewShiftedCopy) {
+  const BlockSparseMatrix base = mixed();
+  BlockSparseMatrix shifted = base;
+  for (const double s : {1.5, 1e-3, 0.0, 7.25}) {
+    shifted.assignShiftedDiagonal(base, s);
+    BlockSparseMatrix fresh = base;
+    fresh.addToDiagonal(s);
+    EXPECT_EQ(shifted.toDense(), fresh.toDense()) << s;
+  }
+  const BlockSparseMatrix other({3}, {{0, 0, {1, 0, 0, 0, 1, 0, 0, 0, 1}}});
+  EXPECT_THROW(shifted.assignShiftedDiagonal(other, 1.0), std::logic_error);
 }

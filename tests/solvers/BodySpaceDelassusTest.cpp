@@ -187,6 +187,35 @@ TEST(BodySpaceDelassus, RawSidesCachedDiagonalAndFiniteness) {
   EXPECT_THROW(raw.setSide(1, 0, 9, J2.data(), G2.data()), std::invalid_argument);
 }
 
+// sideCouplings(): each contact's G_s J_t from its sides, as the products of the matrices it was
+// given (what the body-space Newton step adds for a sticking contact); cached, and recomputed
+// after a side is set.
+TEST(BodySpaceDelassus, SideCouplingsAreTheSidesProductsUntilASideIsSet) {
+  const Chain c = chain(3, 11);
+  BodySpaceDelassus& W = *c.factors;
+  const auto expected = [&](int block, int s, int t) {
+    const int body[2] = {block - 1, block};  // contact k between bodies k-1 and k
+    const Eigen::MatrixXd Js = c.J.block(3 * block, 6 * body[s], 3, 6);
+    const Eigen::MatrixXd Jt = c.J.block(3 * block, 6 * body[t], 3, 6);
+    const Eigen::MatrixXd Gs = c.Minv.block(6 * body[s], 6 * body[s], 6, 6) * Js.transpose();
+    return Eigen::MatrixXd(Gs * Jt);
+  };
+  for (int block = 1; block < 3; ++block)
+    for (int s = 0; s < 2; ++s)
+      for (int t = 0; t < 2; ++t) {
+        const Eigen::Map<const Eigen::Matrix<double, 6, 6>> got(W.sideCouplings(block) +
+                                                                36 * (2 * s + t));
+        EXPECT_LT((got - expected(block, s, t)).norm(), 1e-12 * expected(block, s, t).norm())
+            << block << s << t;
+      }
+  const Eigen::Matrix<double, 3, 6, Eigen::RowMajor> J2 =
+      Eigen::Matrix<double, 3, 6, Eigen::RowMajor>::Constant(0.5);
+  const Eigen::Matrix<double, 6, 3> G2 = Eigen::Matrix<double, 6, 3>::Constant(2.0);
+  W.setSide(1, 0, 0, J2.data(), G2.data());
+  const Eigen::Map<const Eigen::Matrix<double, 6, 6>> after(W.sideCouplings(1));  // (s, t) = (0, 0)
+  EXPECT_LT((after - Eigen::Matrix<double, 6, 6>::Constant(3.0)).norm(), 1e-14);  // 3 x 2 x 0.5
+}
+
 // extract(): the blocks of a group on their own bodies. Contacts 3 and 4 of a 6-body chain touch
 // bodies 2, 3 and 4 only: the extracted operator has 3 bodies (numbered as the blocks meet them)
 // and the same W restricted to those blocks.
