@@ -52,6 +52,19 @@ void pivotSolve(const double* lu, const std::array<int, 6>& rows, const std::arr
   for (int i = 0; i < 6; ++i) x[i] = v[i];
 }
 
+// The island's body graph as a bodies x bodies mask (row-major): the diagonal, and both entries of
+// every pair of bodies that a block acts on; K has this block pattern before elimination.
+void markBodyGraph(const BodySpaceDelassus& W, std::vector<char>& mask) {
+  const int nb = W.bodyCount();
+  mask.assign(static_cast<std::size_t>(nb) * nb, 0);
+  for (int i = 0; i < nb; ++i) mask[static_cast<std::size_t>(i) * nb + i] = 1;
+  for (int b = 0; b < W.blockCount(); ++b) {
+    const int s = W.blockBody(b, 0), t = W.blockBody(b, 1);
+    if (s < 0 || t < 0) continue;
+    mask[static_cast<std::size_t>(s) * nb + t] = mask[static_cast<std::size_t>(t) * nb + s] = 1;
+  }
+}
+
 // A sticking contact (5.3a, 5.4a): A = diag(rho_N, rho_T, rho_T), B = 0.
 bool sticks(const NewtonBlockJacobian& jac) {
   const Eigen::Matrix3d& A = jac.A;
@@ -84,14 +97,10 @@ double BodySpaceNewtonSolve::eliminationFlops(const BodySpaceDelassus& W) {
     below_.resize(nb);
     right_.resize(nb);
   }
-  graph_.assign(static_cast<std::size_t>(nb) * nb, 0);
+  markBodyGraph(W, graph_);
   const auto at = [&](int i, int j) -> char& {
     return graph_[static_cast<std::size_t>(i) * nb + j];
   };
-  for (int b = 0; b < W.blockCount(); ++b) {
-    const int s = W.blockBody(b, 0), t = W.blockBody(b, 1);
-    if (s >= 0 && t >= 0) at(s, t) = at(t, s) = 1;
-  }
   constexpr double pivotLu = 2.0 / 3.0 * 216.0, blockSolve = 2.0 * 216.0, schur = 2.0 * 216.0;
   double flops = 0.0;
   for (int k = 0; k < nb; ++k) {
@@ -130,14 +139,7 @@ bool BodySpaceNewtonSolve::factor(const BodySpaceDelassus& W, const std::vector<
   // K's 6 x 6 blocks on the body graph (the only ones set; blockLu adds its fill): I, plus the
   // terms of M^-1 J^T E J below.
   const int nb = W.bodyCount();
-  nonzero_.assign(static_cast<std::size_t>(nb) * nb, 0);
-  for (int i = 0; i < nb; ++i) nonzero_[static_cast<std::size_t>(i) * nb + i] = 1;
-  for (int b = 0; b < blocks; ++b) {
-    const int s = W.blockBody(b, 0), t = W.blockBody(b, 1);
-    if (s < 0 || t < 0) continue;
-    nonzero_[static_cast<std::size_t>(s) * nb + t] =
-        nonzero_[static_cast<std::size_t>(t) * nb + s] = 1;
-  }
+  markBodyGraph(W, nonzero_);
   for (int j = 0; j < nb; ++j)
     for (int i = 0; i < nb; ++i)
       if (nonzero_[static_cast<std::size_t>(i) * nb + j] != 0) {
@@ -152,8 +154,8 @@ bool BodySpaceNewtonSolve::factor(const BodySpaceDelassus& W, const std::vector<
     const Eigen::Matrix3d& A = jac[b].A;
     const int row0 = offset[b];
     if (k == 3 && sticks(jac[b])) {
-      // Sticking: D_b = s A_b and E_b = I / s; the
-      // block adds its couplings G_s J_t over s, which depend on the factors alone (cached there).
+      // Sticking: D_b = s A_b and E_b = I / s; the block adds its couplings G_s J_t over s,
+      // which depend on the factors alone (cached there).
       dInverse_[b] = (shift * A.diagonal()).cwiseInverse().asDiagonal();
       if (!dInverse_[b].allFinite()) return false;
       e_[b] = inverseShift * Eigen::Matrix3d::Identity();
