@@ -186,13 +186,13 @@ class NewtonSystem {
            BodySpaceNewtonSolve::contactSpaceCost(keptRows);
   }
 
-  // J_sigma d = -phi on every row in body space, refined on the residual (computed with W's
-  // entries) while each step cuts it tenfold, at most 4 steps: the body-space LU pivots only
-  // inside its 6 x 6 diagonal blocks and loses digits as the shift falls (relative residual of one
-  // solve on a tower: 2e-10 at sigma = 1e-4 max W_ii, 2e-6 at 1e-6, 2e-2 at 1e-8), and each
-  // refinement step multiplies the residual by about that much again. True (and d set) when the
-  // residual is within 1e-8 of the right-hand side, the contact-space LU's check. With `refactor`
-  // false the factors of the last body-space solve are reused.
+  // J_sigma d = -phi on every row in body space, refined on the residual (its W x through the
+  // factors, not the Woodbury solve) while each step cuts it tenfold, at most 4 steps: the
+  // body-space LU pivots only inside its 6 x 6 diagonal blocks and loses digits as the shift falls
+  // (relative residual of one solve on a tower: 2e-10 at sigma = 1e-4 max W_ii, 2e-6 at 1e-6, 2e-2
+  // at 1e-8), and each refinement step multiplies the residual by about that much again. True (and
+  // d set) when the residual is within 1e-8 of the right-hand side, the contact-space LU's check.
+  // With `refactor` false the factors of the last body-space solve are reused.
   bool solveInBodySpace(const Eigen::VectorXd& phi, double sigma, Eigen::VectorXd& d,
                         bool refactor) {
     BodySpaceNewtonSolve& body = work_.body;
