@@ -40,6 +40,7 @@ struct IslandWork {
   solvers::SolverInstances solvers;
   std::vector<int> groupScratch;  // solvers::splitsByActingContacts's union-find, kept for storage
   std::optional<solvers::SolverReport> penetration;  // the split impulse's pseudo-solve
+  bool penetrates = false;  // a contact beyond the slop: the split impulse has work this step
   double penetrationSeconds = 0.0;
   VelocityProblemNormals penetrationNormals;  // the split impulse's view of W (kept for storage)
 

@@ -133,3 +133,25 @@ TEST(WorldContact, UnknownSolverIsRejected) {
   EXPECT_EQ(world.settings().solve.options.tolerance,
             engine::WorldSettings{}.solve.options.tolerance);
 }
+
+// The split impulse is a stage of its own with a kept report (docs/architecture.md "The step"):
+// an island that penetrates beyond the slop is corrected and its stage is timed; an island that
+// does not has nothing to do and reports none (its clock is not read).
+TEST(WorldContact, SplitImpulseReportsOnlyIslandsThatPenetrate) {
+  for (const double depth : {0.005, 0.0}) {
+    engine::World world;
+    addGround(world, Eigen::Quaterniond::Identity(), 0.5);
+    geometry::Pose pose;
+    pose.position = {0, 0, 0.1 - depth};
+    addBox(world, pose, 0.1, 1.0, 0.5);
+    const engine::StepReport& report = world.step(0.01);
+    ASSERT_EQ(report.islands.size(), 1u);
+    if (depth > 0) {
+      ASSERT_TRUE(report.islands[0].penetration.has_value());
+      EXPECT_GT(report.penetrationStageSeconds, 0.0);
+    } else {
+      EXPECT_FALSE(report.islands[0].penetration.has_value());
+      EXPECT_EQ(report.penetrationStageSeconds, 0.0);
+    }
+  }
+}
