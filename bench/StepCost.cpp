@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     std::optional<engine::World> built;
     try {  // an unknown scene or a broken file: its error, then the next scene
       const bool ccd = name.ends_with("+ccd");
-      loaded = scenes::loadBuiltinScene(ccd ? name.substr(0, name.size() - 4) : name);
+      loaded = scenes::resolveScene(ccd ? name.substr(0, name.size() - 4) : name);
       for (engine::BodyDesc& body : loaded->bodies)
         body.continuousCollision = ccd && body.motionType == geometry::MotionType::Dynamic;
       built.emplace(engine::io::buildWorld(*loaded));

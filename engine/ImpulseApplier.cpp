@@ -19,11 +19,20 @@ void apply(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
       // Generalised impulse J^T lambda = (linear impulse, angular impulse about the COM), summed
       // row by row (at most 6 rows: a plain loop, not Eigen's dynamic-size matrix-vector kernel).
       Eigen::Vector3d p = Eigen::Vector3d::Zero(), l = Eigen::Vector3d::Zero();
-      for (int i = 0; i < rows; ++i)
-        for (int c = 0; c < 3; ++c) {
-          p[c] += jac(i, c) * impulse[i];
-          l[c] += jac(i, 3 + c) * impulse[i];
-        }
+      const double* j = jac.data();  // row-major, 6 per row
+      if (rows == 3) {  // contacts and ball joints: the same sums with a fixed trip count
+        for (int i = 0; i < 3; ++i)
+          for (int c = 0; c < 3; ++c) {
+            p[c] += j[6 * i + c] * impulse[i];
+            l[c] += j[6 * i + 3 + c] * impulse[i];
+          }
+      } else {
+        for (int i = 0; i < rows; ++i)
+          for (int c = 0; c < 3; ++c) {
+            p[c] += j[6 * i + c] * impulse[i];
+            l[c] += j[6 * i + 3 + c] * impulse[i];
+          }
+      }
       linear[body.index] += state.inverseMasses[body.index] * p;
       angular[body.index] += inverseInertias[body.index] * l;
     }

@@ -240,9 +240,10 @@ void World::solveIsland(IslandWork& island) {
   // An island whose acting contacts form several groups, linked only through contacts that do
   // not act (separating, or gaps that r = 0 keeps), is solved group by group
   // (solvers/ActiveGroups.hpp); the whole plan runs when they do not split or the whole residual
-  // misses the tolerance.
+  // misses the tolerance. The contacts of one free body all share it: they never split.
   std::optional<solvers::PlanOutcome> byGroups;
-  if (island.automaticPlan && solvers::splitsByActingContacts(problem, island.groupScratch))
+  if (island.automaticPlan && island.assembled.degreesOfFreedom > 6 &&
+      solvers::splitsByActingContacts(problem, island.groupScratch))
     byGroups = solvers::solveByActiveGroups(
         problem, solvers::SolverChooser(settings_.solve.chooser), choice, island.plan.options,
         registry_, nullptr, &island.solvers);

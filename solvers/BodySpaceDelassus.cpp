@@ -106,10 +106,13 @@ void BodySpaceDelassus::setSide(int block, int side, int body, const double* J, 
   finitenessKnown_ = false;
   body_[2 * block + side] = body;
   const auto first = static_cast<std::size_t>((2 * offset_[block] + side) * 6);
-  for (int a = 0; a < k; ++a) {  // row a of the block: 12 a further on (two sides per row)
-    std::copy_n(J + 6 * a, 6, &j_[first + 12 * a]);
-    std::copy_n(G + 6 * a, 6, &g_[first + 12 * a]);
-  }
+  double* j = j_.data() + first;
+  double* g = g_.data() + first;
+  for (int a = 0; a < k; ++a)      // row a of the block: 12 a further on (two sides per row)
+    for (int c = 0; c < 6; ++c) {  // written out: six values, where a memcpy call costs more
+      j[12 * a + c] = J[6 * a + c];
+      g[12 * a + c] = G[6 * a + c];
+    }
   entriesValid_ = false;
   diagonal_.clear();
   couplings_.clear();

@@ -59,6 +59,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   auto finish = [&]() {
     work.prepared.bodySpace.reset();  // the problem's factors: theirs to reuse once it is done
     work.prepared.factors.reset();
+    work.prepared.sharedW.reset();  // as the factors: the assembler refills it next step
     work.prepared.diagonalBlocks = nullptr;
     report.seconds = std::chrono::duration<double>(SolveContext::Clock::now() - t0).count();
   };

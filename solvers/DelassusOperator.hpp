@@ -39,6 +39,9 @@ class DelassusOperator {
   [[nodiscard]] const BodySpaceDelassus* bodySpaceOperator() const;
   // The shared body-space factors (same lifetime as any copy of this operator), or null.
   [[nodiscard]] std::shared_ptr<const BodySpaceDelassus> sharedBodySpace() const { return body_; }
+  [[nodiscard]] std::shared_ptr<const BlockSparseMatrix> sharedBlockSparse() const {
+    return sparse_;
+  }
 
   // u = W x + q. For block-sparse storage the summation order is that of fc3d_velocity.
   void velocity(const Eigen::VectorXd& x, const Eigen::VectorXd& q, Eigen::VectorXd& u) const;

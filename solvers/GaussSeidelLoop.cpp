@@ -68,7 +68,7 @@ void gatherSweep(const PreparedProblem& p, const std::vector<int>& order,
 }  // namespace
 
 void localFreeVelocity(const PreparedProblem& p, int b, const Eigen::VectorXd& r, double* qt) {
-  const BlockSparseMatrix& W = p.W;
+  const BlockSparseMatrix& W = p.W();
   const int off = p.offset[b], s = W.blockSize(b);
   for (int a = 0; a < s; ++a) qt[a] = p.q[off + a];
   for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) {

@@ -19,6 +19,7 @@ void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) 
   p.start.known = p.end.known = false;  // their vectors keep their storage
   p.bodySpace.reset();
   p.factors.reset();
+  p.sharedW.reset();
   p.factorsShift = 0.0;
   p.diagonalBlocks = nullptr;
   p.scale.resize(0);
@@ -41,8 +42,11 @@ void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) 
   if (keepBodySpace && !anisotropic && problem.W.bodySpaceOperator()) {
     p.bodySpace = problem.W.sharedBodySpace();
     p.diagonalBlocks = p.bodySpace->diagonalBlocks().data();
+  } else if (const BlockSparseMatrix* own = problem.W.blockSparseMatrix();
+             !anisotropic && own != nullptr && own->blockSizes() == p.sizes) {
+    p.sharedW = problem.W.sharedBlockSparse();  // read in place: no copy of W per solve
   } else {
-    problem.W.toBlockSparse(p.sizes, p.W);
+    problem.W.toBlockSparse(p.sizes, p.ownW);
   }
   if (anisotropic) {
     p.scale = Eigen::VectorXd::Ones(p.size());
@@ -53,11 +57,20 @@ void PreparedProblem::assign(const ContactProblem& problem, bool keepBodySpace) 
       p.scale[p.offset[b] + 2] = k.mu2;
       k = ConstraintBlock::contact(1.0);
     }
-    p.W = p.W.scaledSymmetric(p.scale);
+    p.ownW = p.W().scaledSymmetric(p.scale);
+    p.sharedW.reset();
     p.q = p.q.cwiseProduct(p.scale);
   }
   p.qNorm = plainNorm(p.q);
   p.maxDiagonal = largestDiagonal();
+}
+
+BlockSparseMatrix& PreparedProblem::writableW() {
+  if (sharedW) {
+    ownW = *sharedW;
+    sharedW.reset();
+  }
+  return ownW;
 }
 
 double PreparedProblem::largestDiagonal() const {
@@ -72,7 +85,8 @@ double PreparedProblem::largestDiagonal() const {
 
 void PreparedProblem::formExplicitW(const ContactProblem& problem) {
   if (!bodySpace) return;
-  problem.W.toBlockSparse(sizes, W);
+  problem.W.toBlockSparse(sizes, ownW);
+  sharedW.reset();
   bodySpace.reset();
   diagonalBlocks = nullptr;
   maxDiagonal = largestDiagonal();
@@ -80,7 +94,7 @@ void PreparedProblem::formExplicitW(const ContactProblem& problem) {
 
 const double* PreparedProblem::diagonalBlock(int b) const {
   return bodySpace ? diagonalBlocks + 9 * static_cast<std::ptrdiff_t>(b)
-                   : W.blockValues(W.diagonalBlock(b));
+                   : W().blockValues(W().diagonalBlock(b));
 }
 
 Eigen::Matrix3d PreparedProblem::contactBlock(int b) const {
@@ -104,7 +118,7 @@ void PreparedProblem::velocity(const Eigen::VectorXd& r, Eigen::VectorXd& u) con
   if (bodySpace)
     bodySpace->multiplyAdd(r, u);
   else
-    W.multiplyAdd(r, u);
+    W().multiplyAdd(r, u);
 }
 
 double PreparedProblem::residualFromVelocity(const Eigen::VectorXd& r, const Eigen::VectorXd& u,

@@ -19,7 +19,14 @@
 namespace coulomb::solvers {
 
 struct PreparedProblem {
-  BlockSparseMatrix W;  // empty when bodySpace is set
+  // W's entries (empty when bodySpace is set): the problem's own block-sparse W, read in place
+  // when the solve can take it as it is, else `ownW`, formed (from the factors), scaled
+  // (anisotropic contacts) or shifted (a proximal subproblem) here.
+  [[nodiscard]] const BlockSparseMatrix& W() const { return sharedW ? *sharedW : ownW; }
+  // ownW to write into, holding W's current entries (a copy of the problem's when it was shared).
+  BlockSparseMatrix& writableW();
+  std::shared_ptr<const BlockSparseMatrix> sharedW;  // released with bodySpace when the solve ends
+  BlockSparseMatrix ownW;
   // Set instead of W when the problem's W is body-space and isotropic (assign with keepBodySpace):
   // solvers that work on the factors (Gauss-Seidel, see BodySpaceDelassus) never form W; for the
   // others ContactSolver calls formExplicitW only once they iterate (the starts are evaluated on

@@ -63,7 +63,7 @@ std::optional<Eigen::Vector2d> slideStart(const Eigen::Vector3d& incoming,
 
 bool sweepContacts(const PreparedProblem& problem, Eigen::VectorXd& r) {
   if (problem.bodySpace) return false;
-  const BlockSparseMatrix& W = problem.W;
+  const BlockSparseMatrix& W = problem.W();
   for (int b = 0; b < problem.blockCount(); ++b) {
     if (!problem.blocks[b].isContact()) continue;
     const int o = problem.offset[b];

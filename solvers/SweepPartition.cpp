@@ -46,8 +46,8 @@ void SweepPartition::build(const PreparedProblem& problem, int parts) {
     splitBodies(*problem.bodySpace, parts);
     colourBoundaryBodySpace(*problem.bodySpace);
   } else if (parts > 1) {
-    splitBlocks(problem.W, parts);
-    colourBoundaryBlocks(problem.W);
+    splitBlocks(problem.W(), parts);
+    colourBoundaryBlocks(problem.W());
   }
   fillOrder(parts);
 }

@@ -157,11 +157,11 @@ void EqualityLdltSolver::solvePrepared(const PreparedProblem& p, const SolveCont
   Workspace& w = workspace_;
   report.iterations = 1;
   report.nativeResidualName = "common residual of the direct solve";
-  const bool byBlocks = p.bodySpace ? blocksFromFactors(*p.bodySpace) : blocksFromEntries(p.W, n);
+  const bool byBlocks = p.bodySpace ? blocksFromFactors(*p.bodySpace) : blocksFromEntries(p.W(), n);
   if (byBlocks && !w.blockLdlt.analyzed(n / 3, w.pairs)) w.blockLdlt.analyze(n / 3, w.pairs);
   const bool factorized =
       byBlocks ? w.blockLdlt.factorize(w.diagonal, w.coupling)
-               : factorizeByEntries(p.bodySpace ? p.bodySpace->toBlockSparse() : p.W, n);
+               : factorizeByEntries(p.bodySpace ? p.bodySpace->toBlockSparse() : p.W(), n);
   if (!factorized) {
     report.status = SolverStatus::NumericalFailure;
     report.note("LDL^T factorization failed (W singular: redundant rows?)");

@@ -44,7 +44,7 @@ struct FacetedLcp {
 FacetedLcp buildLcp(const PreparedProblem& p, const LemkeOptions& o) {
   FacetedLcp L;
   const int nd = o.frictionDirections;
-  const Eigen::MatrixXd W = p.W.toDense();
+  const Eigen::MatrixXd W = p.W().toDense();
   int lcpSize = 0;
   for (int blk = 0; blk < p.blockCount(); ++blk) {
     const ConstraintBlock& b = p.blocks[blk];

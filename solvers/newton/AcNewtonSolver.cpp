@@ -33,7 +33,7 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
   while (used < budget && bestE > tol) {
     if (context.timeUp(report)) break;
     ++outer;
-    inner.W.assignShiftedDiagonal(p.W, sigma);  // inner.W is p.W's copy (inner = p)
+    inner.writableW().assignShiftedDiagonal(p.W(), sigma);  // inner.W() is p.W()'s (inner = p)
     inner.factorsShift = p.factorsShift + sigma;
     inner.q = p.q;
     inner.q -= sigma * r;
@@ -76,7 +76,8 @@ void proximalLoop(const PreparedProblem& p, const AlartCurnierFunction& f, const
     }
     sigma = std::max(sigma, 1e-14 * meanDiag);
   }
-  inner.factors.reset();  // the problem's factors: the caller's to release
+  inner.factors.reset();  // the problem's factors and W: the caller's to release
+  inner.sharedW.reset();
   report.iterations += used;
   r = best;
   // Formatted on the stack: a steady step allocates nothing (docs/architecture.md, memory).

@@ -36,7 +36,7 @@ class NewtonSystem {
     jac_.resize(p.blockCount());
     for (int b = 0; b < p.blockCount(); ++b) {
       if (!p.blocks[b].isContact()) {
-        rhoN_[b] = rhoT_[b] = 1.0 / p.W.blockValues(p.W.diagonalBlock(b))[0];  // (10.2)
+        rhoN_[b] = rhoT_[b] = 1.0 / p.W().blockValues(p.W().diagonalBlock(b))[0];  // (10.2)
         continue;
       }
       const Eigen::Matrix3d W = p.contactBlock(b);
@@ -86,7 +86,7 @@ class NewtonSystem {
   void applyAB(const Eigen::VectorXd& x, const Eigen::VectorXd& z, Eigen::VectorXd& y) const {
     y.resize(p_.size());
     for (int b = 0; b < p_.blockCount(); ++b) {
-      const int o = p_.offset[b], s = p_.W.blockSize(b);
+      const int o = p_.offset[b], s = p_.W().blockSize(b);
       for (int a = 0; a < s; ++a) {
         double v = 0;
         for (int t = 0; t < s; ++t) v += jac_[b].A(a, t) * x[o + t] + jac_[b].B(a, t) * z[o + t];
@@ -102,14 +102,14 @@ class NewtonSystem {
     atphi.setZero(p_.size());
     g.setZero(p_.size());
     for (int b = 0; b < p_.blockCount(); ++b) {
-      const int o = p_.offset[b], s = p_.W.blockSize(b);
+      const int o = p_.offset[b], s = p_.W().blockSize(b);
       for (int a = 0; a < s; ++a)
         for (int t = 0; t < s; ++t) {
           atphi[o + t] += jac_[b].A(a, t) * phi[o + a];
           g[o + t] += jac_[b].B(a, t) * phi[o + a];
         }
     }
-    p_.W.multiplyTransposeAdd(atphi, g);
+    p_.W().multiplyTransposeAdd(atphi, g);
     return g;
   }
 
@@ -129,7 +129,7 @@ class NewtonSystem {
     }
     d.setZero(n);
     for (int b = 0; b < p_.blockCount(); ++b) {
-      const int o = p_.offset[b], s = p_.W.blockSize(b);
+      const int o = p_.offset[b], s = p_.W().blockSize(b);
       for (int a = 0; a < s; ++a) {
         if (!refactor) {
           if (index[o + a] < 0) d[o + a] = -phi[o + a];
@@ -157,7 +157,7 @@ class NewtonSystem {
       jd.setZero(n);
     } else {
       wd = sigma * d;
-      p_.W.multiplyAdd(d, wd);
+      p_.W().multiplyAdd(d, wd);
       applyAB(wd, d, jd);
     }
     Eigen::VectorXd& rhs = work_.rhs;  // kept at the problem's size: |R| varies below it
@@ -166,7 +166,7 @@ class NewtonSystem {
     if (x.size() != n) x.resize(n);
     for (int k = 0; k < m; ++k) rhs[k] = -phi[kept[k]] - jd[kept[k]];
     // J_RR = (A (W + sigma I) + B)_RR: dense or sparse LU (NewtonLinearSolver).
-    if (refactor ? !linear_.solveLeading(p_.W, p_.offset, jac_, kept, index, sigma, rhs, x)
+    if (refactor ? !linear_.solveLeading(p_.W(), p_.offset, jac_, kept, index, sigma, rhs, x)
                  : !linear_.solveAgain(rhs, x))
       return false;
     for (int k = 0; k < m; ++k) d[kept[k]] = x[k];
@@ -284,14 +284,14 @@ std::optional<Direction> newtonDirection(NewtonSystem& system, const PreparedPro
   const auto steepestDescent = [&] {
     d = -system.gradient(phi);
     wd.setZero(n);
-    p.W.multiplyAdd(d, wd);
+    p.W().multiplyAdd(d, wd);
     system.applyAB(wd, d, jd);
     out.slope = phi.dot(jd);
     ++steepest;
   };
   if (!ok || !work.wdOfD) {  // the body-space solve leaves W d in wd (its residual check)
     wd.setZero(n);
-    if (ok) p.W.multiplyAdd(d, wd);
+    if (ok) p.W().multiplyAdd(d, wd);
   }
   if (ok) {
     system.applyAB(wd, d, jd);

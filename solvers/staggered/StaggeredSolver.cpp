@@ -49,7 +49,7 @@ class SubProblem {
   Eigen::VectorXd apply(const Eigen::VectorXd& d) const {
     Eigen::VectorXd full = Eigen::VectorXd::Zero(p_.size()), out = Eigen::VectorXd::Zero(p_.size());
     scatter(d, full);
-    p_.W.multiplyAdd(full, out);
+    p_.W().multiplyAdd(full, out);
     return gather(out);
   }
   // Projection on the product set; friction radii mu r_N from `r` (normals frozen).
@@ -95,7 +95,7 @@ class SubProblem {
   Eigen::VectorXd applyTranspose(const Eigen::VectorXd& d) const {
     Eigen::VectorXd full = Eigen::VectorXd::Zero(p_.size()), out = Eigen::VectorXd::Zero(p_.size());
     scatter(d, full);
-    p_.W.multiplyTransposeAdd(full, out);
+    p_.W().multiplyTransposeAdd(full, out);
     return gather(out);
   }
   const PreparedProblem& p_;

@@ -70,7 +70,7 @@ TEST(BodySpaceNewtonSolve, SolvesTheSystemFormedFromWsEntries) {
   const ContactProblem problem = coulomb::solvers::testing::tower(10, 0.5, 0.3);
   const BodySpaceDelassus& factors = *problem.W.bodySpaceOperator();
   const PreparedProblem prepared = PreparedProblem::from(problem);
-  const Eigen::MatrixXd W = prepared.W.toDense();
+  const Eigen::MatrixXd W = prepared.W().toDense();
   const int n = prepared.size();
   ASSERT_EQ(n, 120);
   ASSERT_EQ(6 * factors.bodyCount(), 60);

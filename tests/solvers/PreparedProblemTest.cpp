@@ -20,7 +20,7 @@ TEST(PreparedProblem, AnisotropicContactsBecomeIsotropic) {
   const PreparedProblem pp = PreparedProblem::from(p);
   EXPECT_FALSE(pp.blocks[0].anisotropic);
   EXPECT_DOUBLE_EQ(pp.blocks[0].mu, 1.0);
-  EXPECT_DOUBLE_EQ(pp.W.toDense()(1, 1), 2.0 * 0.2 * 0.2);
+  EXPECT_DOUBLE_EQ(pp.W().toDense()(1, 1), 2.0 * 0.2 * 0.2);
   EXPECT_DOUBLE_EQ(pp.q[2], 3.0 * 0.8);
   const Eigen::VectorXd r = Eigen::Vector4d(1, 0.1, -0.3, 2);
   EXPECT_LT((pp.toOriginal(pp.fromOriginal(r)) - r).norm(), 1e-15);
@@ -82,7 +82,33 @@ TEST(PreparedProblem, WFormedOnDemandEqualsWFormedUpFront) {
   EXPECT_EQ(onDemand.maxDiagonal, upFront.maxDiagonal);
   onDemand.formExplicitW(p);
   EXPECT_EQ(onDemand.bodySpace, nullptr);
-  EXPECT_EQ(onDemand.W.toDense(), upFront.W.toDense());
+  EXPECT_EQ(onDemand.W().toDense(), upFront.W().toDense());
   EXPECT_EQ(onDemand.maxDiagonal, upFront.maxDiagonal);
   EXPECT_GT(upFront.maxDiagonal, 0.0);
+}
+
+// An isotropic problem with a block-sparse W is read in place (no copy of W per solve); writing
+// into W (a proximal subproblem's shift) copies it first and leaves the problem's W as it was.
+TEST(PreparedProblem, BlockSparseWIsSharedUntilWrittenInto) {
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Identity(6, 6) * 2.0;
+  dense(0, 3) = dense(3, 0) = 0.5;
+  auto sparse = std::make_shared<BlockSparseMatrix>();
+  sparse->assignFromDense(dense, {3, 3});
+  ContactProblem p;
+  p.blocks = {ConstraintBlock::contact(0.5), ConstraintBlock::contact(0.5)};
+  p.W = DelassusOperator::blockSparse(sparse);
+  p.q = Eigen::VectorXd::LinSpaced(6, -1.0, 1.0);
+  PreparedProblem prepared;
+  prepared.assign(p);
+  EXPECT_EQ(&prepared.W(), sparse.get());
+  PreparedProblem shifted = prepared;  // as ac_newton's proximal loop copies it
+  shifted.writableW().assignShiftedDiagonal(prepared.W(), 0.25);
+  EXPECT_NE(&shifted.W(), sparse.get());
+  EXPECT_EQ(shifted.W().toDense(), dense + 0.25 * Eigen::MatrixXd::Identity(6, 6));
+  EXPECT_EQ(sparse->toDense(), dense);  // the problem's W is untouched
+  // Another partition than the problem's blocks (or anisotropic contacts) gets its own copy.
+  ContactProblem anisotropic = p;
+  anisotropic.blocks[0] = ConstraintBlock::anisotropicContact(0.2, 0.8);
+  prepared.assign(anisotropic);
+  EXPECT_NE(&prepared.W(), sparse.get());
 }

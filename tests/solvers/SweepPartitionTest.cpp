@@ -83,8 +83,8 @@ TEST(SweepPartition, TheMatrixFormSplitsWithoutCouplingAcrossParts) {
   s.build(p, 3);
   expectAPermutationInSegments(s, p.blockCount());
   for (int b = 0; b < p.blockCount(); ++b)
-    for (int k = p.W.rowBegin(b); k < p.W.rowEnd(b); ++k) {
-      const int other = p.W.blockColumn(k);
+    for (int k = p.W().rowBegin(b); k < p.W().rowEnd(b); ++k) {
+      const int other = p.W().blockColumn(k);
       if (other == b) continue;
       if (s.partOf(b) >= 0) {  // an interior block's neighbours: its part or the boundary
         EXPECT_TRUE(s.partOf(other) == s.partOf(b) || s.partOf(other) == -1) << b << ", " << other;
