@@ -125,7 +125,7 @@ class SparseRowsBuilder {
   }
 
   void build(solvers::BlockSparseMatrix& out) const {
-    out.assignBlockCsr(blockSizes_, rowStart_, blockColumns_, values_);
+    out.adoptBlockCsr(blockSizes_, rowStart_, blockColumns_, values_);
   }
 
  private:
@@ -199,7 +199,7 @@ void assembleContactBlocks(const joints::RowSet& rows, AssemblyScratch& scratch,
   }
   std::vector<int>& sizes = scratch.csrBlockSizes;
   sizes.assign(blockCount, 3);
-  out.assignBlockCsr(sizes, rowStart, columns, values);
+  out.adoptBlockCsr(sizes, rowStart, columns, values);
 }
 
 // `kept` when no operator shares it any more (refilled in place), else a fresh one.

@@ -180,6 +180,12 @@ struct FclScene::Impl {
   std::map<ColliderId, std::unique_ptr<Entry>> entries;  // unique_ptr: stable user-data address
   fcl::DynamicAABBTreeCollisionManagerd manager;
   std::vector<fcl::CollisionObjectd*> moved;  // left their fat AABB since the last updateTree
+  struct Shrunk {
+    TreeObject* object;
+    fcl::AABBd old;  // the fat box its leaf holds until the next updateTree
+  };
+  std::vector<Shrunk> shrunk;                         // a fat AABB inside the old one (see place)
+  std::vector<fcl::CollisionObjectd*> shrunkObjects;  // kept for its storage
   // Registered at the next updateTree: into an empty tree as one balanced bulk build, since
   // inserting 10 000 leaves one by one into FCL's tree showed up as its main cost.
   std::vector<fcl::CollisionObjectd*> pending;
@@ -194,15 +200,35 @@ struct FclScene::Impl {
   // The tree re-inserts a leaf whenever its box changes at all (docs/fcl-notes.md 6), so each leaf
   // holds a box fattened by `slack` beyond the margin, replaced only when the shape leaves it
   // (Box2D's b2_aabbMargin idea). A resting body then costs no tree work.
+  // A fat box is refit too when it has grown stale: wider on some axis than a fresh one by more
+  // than twice the slack (the sweep of a fast phase, gone once the body rests, or a turn that
+  // narrowed the shape's box). Kept, it would hold neighbours that no longer come near as
+  // candidate pairs for as long as the body rests (a settled pile of 1 000 boxes: 6 900 pairs
+  // tested each step instead of 1 000). Moving inside its box never refits a body. FCL's tree
+  // ignores a leaf's new box when the old one contains it (HierarchyTree::update), so a shrunk
+  // box is put in by removing and inserting the leaf (`shrunk`, at the next updateTree).
   void place(Entry& entry, double sweep) {
     const fcl::AABBd tight = tightAabb(*entry.shape, *entry.object);
     const fcl::Vector3d grow = fcl::Vector3d::Constant(margin + sweep);
     const fcl::AABBd needed(tight.min_ - grow, tight.max_ + grow);
-    if (!entry.hasFat || !entry.fat.contain(needed)) {
-      const fcl::Vector3d slack = fcl::Vector3d::Constant(2.0 * margin + 1e-4);
-      entry.fat = fcl::AABBd(needed.min_ - slack, needed.max_ + slack);
+    const double slackWidth = 2.0 * margin + 1e-4;
+    const auto stale = [&] {
+      const fcl::Vector3d excess = (entry.fat.max_ - entry.fat.min_) - (needed.max_ - needed.min_);
+      return excess.maxCoeff() > 4.0 * slackWidth;  // a fresh box has 2 slackWidth per axis
+    };
+    const bool leaves = !entry.hasFat || !entry.fat.contain(needed);
+    if (leaves || stale()) {
+      const fcl::Vector3d slack = fcl::Vector3d::Constant(slackWidth);
+      const fcl::AABBd fresh(needed.min_ - slack, needed.max_ + slack);
+      const bool shrinks = entry.hasFat && entry.fat.contain(fresh);
+      if (!entry.isPlane) {
+        if (shrinks)
+          shrunk.push_back({entry.object.get(), entry.fat});
+        else
+          moved.push_back(entry.object.get());
+      }
+      entry.fat = fresh;
       entry.hasFat = true;
-      if (!entry.isPlane) moved.push_back(entry.object.get());
     }
     entry.object->setAabb(entry.fat);
   }
@@ -232,6 +258,12 @@ void FclScene::upsert(ColliderId id, const std::shared_ptr<const Shape>& shape) 
   erase(id);
   if (!entry->isPlane) impl_->pending.push_back(entry->object.get());
   impl_->entries.emplace(id, std::move(entry));
+  // The per-step lists hold at most every entry (moved: twice, from upsert and setPose), so a
+  // step never grows them.
+  const std::size_t count = impl_->entries.size();
+  impl_->moved.reserve(2 * count);
+  impl_->shrunk.reserve(count);
+  impl_->shrunkObjects.reserve(count);
 }
 
 void FclScene::erase(ColliderId id) {
@@ -246,6 +278,10 @@ void FclScene::erase(ColliderId id) {
     impl_->manager.unregisterObject(object);
   auto& moved = impl_->moved;
   moved.erase(std::remove(moved.begin(), moved.end(), object), moved.end());
+  auto& shrunk = impl_->shrunk;
+  shrunk.erase(std::remove_if(shrunk.begin(), shrunk.end(),
+                              [&](const Impl::Shrunk& s) { return s.object == object; }),
+               shrunk.end());
   impl_->entries.erase(it);
 }
 
@@ -273,6 +309,25 @@ void FclScene::updateTree() {
     impl_->manager.registerObjects(impl_->pending);  // bulk top-down build when the tree is empty
     impl_->pending.clear();
     impl_->manager.setup();
+  }
+  if (!impl_->shrunk.empty()) {
+    // A shrunk leaf is first moved to an empty box outside its old one, which the tree does take
+    // (no allocation: the leaf and the map entry stay), then updated with its own box below.
+    std::vector<fcl::CollisionObjectd*>& objects = impl_->shrunkObjects;
+    objects.clear();
+    for (const Impl::Shrunk& s : impl_->shrunk) {
+      const fcl::Vector3d away =
+          s.old.max_ + fcl::Vector3d::Constant(1.0 + (s.old.max_ - s.old.min_).maxCoeff());
+      s.object->setAabb(fcl::AABBd(away, away));
+      objects.push_back(s.object);
+    }
+    impl_->manager.update(objects);
+    for (const Impl::Shrunk& s : impl_->shrunk) {
+      const auto* entry = static_cast<const Impl::Entry*>(s.object->getUserData());
+      s.object->setAabb(entry->fat);
+      impl_->moved.push_back(s.object);
+    }
+    impl_->shrunk.clear();
   }
   impl_->manager.update(impl_->moved);  // only the leaves that left their fat box; no rebalance
   impl_->moved.clear();                 // of the whole tree when nothing moved

@@ -75,6 +75,17 @@ void BlockSparseMatrix::assignBlockCsr(const std::vector<int>& blockSizes,
   indexBlockCsr();
 }
 
+void BlockSparseMatrix::adoptBlockCsr(const std::vector<int>& blockSizes,
+                                      const std::vector<int>& rowStart,
+                                      const std::vector<int>& blockColumns,
+                                      std::vector<double>& values) {
+  blockSize_.assign(blockSizes.begin(), blockSizes.end());
+  rowStart_.assign(rowStart.begin(), rowStart.end());
+  col_.assign(blockColumns.begin(), blockColumns.end());
+  values_.swap(values);
+  indexBlockCsr();
+}
+
 void BlockSparseMatrix::assignFromDense(const Eigen::MatrixXd& W,
                                         const std::vector<int>& blockSizes) {
   const auto nb = static_cast<int>(blockSizes.size());

@@ -34,6 +34,10 @@ class BlockSparseMatrix {
   // has held a matrix as large).
   void assignBlockCsr(const std::vector<int>& blockSizes, const std::vector<int>& rowStart,
                       const std::vector<int>& blockColumns, const std::vector<double>& values);
+  // The same, taking `values` by swapping it with this matrix's (the caller gets the old storage
+  // back, to refill next time): a fresh W's entries are not copied once more.
+  void adoptBlockCsr(const std::vector<int>& blockSizes, const std::vector<int>& rowStart,
+                     const std::vector<int>& blockColumns, std::vector<double>& values);
 
   [[nodiscard]] int blockCount() const { return static_cast<int>(blockSize_.size()); }
   [[nodiscard]] int size() const { return blockOffset_.empty() ? 0 : blockOffset_.back(); }

@@ -266,7 +266,7 @@ const BlockSparseMatrix& BodySpaceDelassus::toBlockSparse() const {
       value += dot6(&j_[w.terms[t].first], &g_[w.terms[t].second]);
     w.values[e] = value;
   }
-  entries_.assignBlockCsr(size_, w.rowStart, w.columns, w.values);
+  entries_.adoptBlockCsr(size_, w.rowStart, w.columns, w.values);
   entriesValid_ = true;
   return entries_;
 }

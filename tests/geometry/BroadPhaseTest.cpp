@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <span>
+#include <vector>
 
 namespace coulomb::geometry {
 namespace {
@@ -23,11 +25,12 @@ struct Fixture {
     colliders.push_back(c);
     poses.push_back(Pose::translation(at));
   }
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> run(const PairPredicate& keep = {}) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> run(const PairPredicate& keep = {},
+                                                           std::span<const double> sweeps = {}) {
     std::vector<char> usable(colliders.size(), 1);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
     for (const CandidatePair& p :
-         broad.update(colliders, poses, usable, scene, 0.005, keep, failures))
+         broad.update(colliders, poses, usable, scene, 0.005, keep, failures, sweeps))
       out.emplace_back(colliders[p.a].id.index, colliders[p.b].id.index);
     return out;
   }
@@ -94,6 +97,21 @@ TEST(BroadPhase, RemovedCollidersLeaveTheTree) {
   f.colliders.pop_back();
   f.poses.pop_back();
   EXPECT_TRUE(f.run().empty());
+}
+
+// A body's box grows with its sweep (v* h) while it moves fast and shrinks back once it rests: a
+// box that kept the sweep of a fall would pair with neighbours it no longer comes near for as long
+// as it rests (FCL's tree keeps a leaf's old box when the new one fits inside it).
+TEST(BroadPhase, ABoxShrinksBackOnceItsSweepIsGone) {
+  Fixture f;
+  f.add(1, 1, Box{}, {0, 0, 0});
+  f.add(2, 2, Box{}, {1.3, 0, 0});  // 0.3 m apart: no pair at rest
+  EXPECT_TRUE(f.run().empty());
+  const std::vector<double> falling{0.5, 0.0};  // box 1 can travel 0.5 m in this step
+  EXPECT_EQ(f.run({}, falling), (Pairs{{1, 2}}));
+  EXPECT_TRUE(f.run().empty());  // at rest again: its old wide box is gone from the tree
+  EXPECT_TRUE(f.run().empty());
+  EXPECT_EQ(f.run({}, falling), (Pairs{{1, 2}}));  // and it grows again when it moves
 }
 
 }  // namespace
