@@ -21,8 +21,13 @@ class ArticulationStage;
 
 struct AssemblySettings {
   // [scalar unknowns] Islands with at most this many rows get W's entries, block-sparse (the
-  // form every solver works on; a dense W would be converted to it by every solve).
-  int sparseRowLimit = 96;
+  // form every solver works on; a dense W would be converted to it by every solve). Larger ones
+  // keep W's factors too, and a Newton step there can be solved in body space: the contact-space
+  // LU grows as rows^3, the body-space one with the bodies. Default 48 (16 contacts): columns of
+  // 5-8 boxes landing in box_pile_1000 took 3.9 s over the pile's first 60 steps at 96 rows, 3.4
+  // at 72, 3.2-3.3 at 48 and 24; a box or two (up to 16 contacts) keep the entries' start sweep
+  // (docs/benchmarks.md "Columns in body space").
+  int sparseRowLimit = 48;
   // Larger islands without articulation rows, and islands of equality rows only at any size (a
   // joint island, solved by ldlt from the factors), get W factored (solvers::BodySpaceDelassus: J
   // and M^-1 J^T per block side, O(rows)) instead of block-sparse (O(nnz W), ~28 3x3 blocks per

@@ -205,3 +205,25 @@ TEST(ProblemAssembler, ArrivalRowsAreJTimesTheArrivalTwists) {
   factors->addRowVelocities(factored.problem.arrival, fromFactors.data());
   EXPECT_LT((fromFactors - expected).norm(), 1e-14);
 }
+
+// With the default settings an island of up to 16 contacts (48 rows: two stacked boxes, four
+// points per face, with room to spare) gets W's entries, and one of 20 contacts (60 rows: a column
+// of five boxes) keeps W's factors, so that its Newton steps can be solved in body space
+// (docs/benchmarks.md "Columns in body space"). Under the former 96-row limit both had entries.
+TEST(ProblemAssembler, ColumnsOfMoreThanSixteenContactsKeepWFactored) {
+  const geometry::BodyState state = threeBodies();
+  auto faces = [&](int count) {
+    joints::RowSet rows;
+    for (int k = 0; k < count; ++k) {
+      const double x = (k % 2 == 0 ? 0.1 : -0.1), y = ((k / 2) % 2 == 0 ? 0.1 : -0.1);
+      const std::uint32_t below = k < count / 2 ? 0 : 1, above = k < count / 2 ? 1 : 2;
+      rows.blocks.push_back(contactRows(state, below, above, Eigen::Vector3d(x, y, 0.2 * k), 0.5));
+    }
+    return rows;
+  };
+  const engine::AssembledProblem small = engine::ProblemAssembler().assemble(faces(16), state);
+  EXPECT_NE(small.problem.W.blockSparseMatrix(), nullptr);
+  EXPECT_EQ(small.problem.W.bodySpaceOperator(), nullptr);
+  const engine::AssembledProblem column = engine::ProblemAssembler().assemble(faces(20), state);
+  EXPECT_NE(column.problem.W.bodySpaceOperator(), nullptr);
+}
