@@ -1,4 +1,4 @@
-// Cost of a World step on built-in scenes: wall time per step (median, p99, max, mean), the first
+// Cost of a World step on built-in scenes or .json scene files: wall time per step (median, p99, max, mean), the first
 // step alone, heap allocations per step (malloc calls, counted in this program only) and the
 // solver figures of the same steps (iterations, worst common residual), so speed is never read
 // without error; the final state hash tells whether two builds computed the same trajectory.
