@@ -4,6 +4,17 @@ namespace coulomb::engine {
 
 namespace {
 
+// J^T lambda of one side, row by row (J row-major, 6 per row): p += J_lin^T lambda, l += J_ang^T
+// lambda. A plain loop, not Eigen's dynamic-size matrix-vector kernel.
+inline void addRows(const double* j, const double* impulse, int rows, Eigen::Vector3d& p,
+                    Eigen::Vector3d& l) {
+  for (int i = 0; i < rows; ++i)
+    for (int c = 0; c < 3; ++c) {
+      p[c] += j[6 * i + c] * impulse[i];
+      l[c] += j[6 * i + 3 + c] * impulse[i];
+    }
+}
+
 void apply(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
            const Eigen::VectorXd& lambda, const geometry::BodyState& state,
            const InverseInertias& inverseInertias, std::vector<Eigen::Vector3d>& linear,
@@ -16,23 +27,12 @@ void apply(const joints::RowSet& rows, const std::vector<RowBlockSlot>& slots,
       const geometry::BodyId& body = sideB ? block.bodyB : block.bodyA;
       if (!body.valid() || body.index >= state.size() || !state.isDynamic(body.index)) continue;
       const joints::RowJacobian& jac = sideB ? block.jacobianB : block.jacobianA;
-      // Generalised impulse J^T lambda = (linear impulse, angular impulse about the COM), summed
-      // row by row (at most 6 rows: a plain loop, not Eigen's dynamic-size matrix-vector kernel).
+      // Generalised impulse J^T lambda = (linear impulse, angular impulse about the COM).
       Eigen::Vector3d p = Eigen::Vector3d::Zero(), l = Eigen::Vector3d::Zero();
-      const double* j = jac.data();  // row-major, 6 per row
-      if (rows == 3) {  // contacts and ball joints: the same sums with a fixed trip count
-        for (int i = 0; i < 3; ++i)
-          for (int c = 0; c < 3; ++c) {
-            p[c] += j[6 * i + c] * impulse[i];
-            l[c] += j[6 * i + 3 + c] * impulse[i];
-          }
-      } else {
-        for (int i = 0; i < rows; ++i)
-          for (int c = 0; c < 3; ++c) {
-            p[c] += j[6 * i + c] * impulse[i];
-            l[c] += j[6 * i + 3 + c] * impulse[i];
-          }
-      }
+      if (rows == 3)  // contacts and ball joints: the same sums with a constant trip count
+        addRows(jac.data(), impulse, 3, p, l);
+      else
+        addRows(jac.data(), impulse, rows, p, l);
       linear[body.index] += state.inverseMasses[body.index] * p;
       angular[body.index] += inverseInertias[body.index] * l;
     }
