@@ -222,6 +222,18 @@ void JointStage::correctDrift(geometry::BodyState& state, std::span<const std::i
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
+void JointStage::projectVelocities(geometry::BodyState& state,
+                                   std::span<const std::int32_t> items) {
+  std::vector<const joints::JointDef*>& defs = projectionDefs_;
+  defs.clear();
+  for (const std::int32_t item : items)
+    defs.push_back(&records_[static_cast<std::size_t>(item)].def);
+  integrators::PredictedStateResult& result = projectionResult_;
+  integrators::projectJointVelocities(state, defs, projection_, result);
+  for (std::size_t j = 0; j < items.size(); ++j)
+    records_[static_cast<std::size_t>(items[j])].impulseOnB += result.impulsesOnB[j];
+}
+
 joints::EnergyTarget JointStage::energyTarget(std::span<const std::int32_t> items,
                                               const joints::Stabilization& worldPolicy,
                                               const geometry::BodyState& state, bool& anchored,

@@ -69,6 +69,10 @@ class JointStage final : public RowSource {
   /// Predicted-state correction of the `active` joints whose policy is PredictedState.
   void correctDrift(geometry::BodyState& state, std::span<const std::int32_t> active,
                     const joints::Stabilization& worldPolicy, double h, JointStepReport& report);
+  /// The second half of the symmetric step of islands of ideal joints: the velocities of the
+  /// bodies of the joints `items` projected onto J(x) v = 0 at their poses after the position
+  /// update (integrators::projectJointVelocities); the impulses count in the reactions.
+  void projectVelocities(geometry::BodyState& state, std::span<const std::int32_t> items);
   /// What the island whose joint slots are `items` keeps through the energy projection
   /// (integrators/EnergyProjection.hpp): its joints' common PredictedStateSettings::energy when
   /// they are all ideal joints under the predicted-state policy (no limit, motor or friction)
@@ -130,6 +134,10 @@ class JointStage final : public RowSource {
   std::vector<std::uint32_t> correctionSlots_;
   integrators::PredictedStateWorkspace correction_;
   integrators::PredictedStateResult correctionResult_;
+  // The symmetric step's velocity projection, kept like the correction's.
+  std::vector<const joints::JointDef*> projectionDefs_;
+  integrators::PredictedStateWorkspace projection_;
+  integrators::PredictedStateResult projectionResult_;
 };
 
 }  // namespace coulomb::engine

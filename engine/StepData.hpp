@@ -41,6 +41,10 @@ struct IslandWork {
   std::vector<int> groupScratch;  // solvers::splitsByActingContacts's union-find, kept for storage
   std::optional<solvers::SolverReport> penetration;  // the split impulse's pseudo-solve
   bool penetrates = false;  // a contact beyond the slop: the split impulse has work this step
+  // An island of ideal joints that keeps its exact energy, with nothing else acting: its bodies
+  // take half of the step's gravity kick before the solve and half after the position update
+  // (the symmetric step; World::splitJointIslandKicks).
+  bool symmetricStep = false;
   double penetrationSeconds = 0.0;
   VelocityProblemNormals penetrationNormals;  // the split impulse's view of W (kept for storage)
 
@@ -51,11 +55,12 @@ struct IslandWork {
 
 struct StepData {
   double h = 0.0;
-  StepEdges edges;                         // every source's edges, tagged
-  std::vector<std::uint8_t> dynamicMask;   // per body slot: carries unknowns in this step
-  std::vector<Island> islands;             // from the island builder
-  std::vector<IslandWork> work;            // one per island, same order
-  std::vector<std::int32_t> activeJoints;  // joint slots with an edge this step
+  StepEdges edges;                            // every source's edges, tagged
+  std::vector<std::uint8_t> dynamicMask;      // per body slot: carries unknowns in this step
+  std::vector<Island> islands;                // from the island builder
+  std::vector<IslandWork> work;               // one per island, same order
+  std::vector<std::int32_t> activeJoints;     // joint slots with an edge this step
+  std::vector<std::int32_t> symmetricJoints;  // the joints of the islands with symmetricStep
   // The world inverse inertias of the velocity solve when some differ from the bodies' own
   // (JointStage::stabilizedInverseInertias); unused when `stabilized` is false.
   bool stabilized = false;

@@ -231,6 +231,8 @@ class World {
   void correctPenetrations(IslandWork& island);
   void recordStartEnergies();         // E~ of every body at the step's start (energy projection)
   void projectJointIslandEnergies();  // islands of ideal joints back to their start E~
+  void splitJointIslandKicks();       // islands of ideal joints: the first half kick only
+  void finishJointIslandKicks();      // their second half kick, then J(x+) v = 0 (RATTLE)
   void fillIslandReport(const IslandWork& island, IslandReport& report) const;
   /// Adds a StepReport warning when no solver of the island's plan could run (said once per
   /// choice of solvers).

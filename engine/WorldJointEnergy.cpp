@@ -19,6 +19,50 @@ void World::recordStartEnergies() {
   step_.startPoses = state_.poses;  // (assigned: the vectors keep their storage)
 }
 
+// An island takes the symmetric step when its joints keep the exact energy (`energy: exact`) and
+// nothing but gravity and ideal joints acts on it: no contact, no tree link, no applied force or
+// torque, joints that JointStage::energyTarget accepts (predicted-state policy, no limit, motor,
+// friction or kinematic driver), and no body under a heavy load's stabilizing inertia (there the
+// joint rows turn by h omega >> 1 per step, beyond a symmetric step's stability, and the
+// stabilized kick-drift step stays). Its bodies take v* = v + (h/2) g here instead of v + h g.
+void World::splitJointIslandKicks() {
+  step_.symmetricJoints.clear();
+  if (step_.startEnergies.empty()) return;  // no joint asks for an energy target
+  const Eigen::Vector3d halfKick = 0.5 * step_.h * settings_.gravity;
+  for (IslandWork& island : step_.work) {
+    island.symmetricStep = false;
+    const std::vector<std::int32_t>& joints = island.items[kJointRows];
+    if (joints.empty() || !island.items[kContactRows].empty() || !island.items[kTreeRows].empty())
+      continue;
+    bool anchored = false;
+    double tolerance = 0.0;
+    if (joints_.energyTarget(joints, settings_.jointStabilization, state_, anchored, tolerance) !=
+        joints::EnergyTarget::Exact)
+      continue;
+    bool excluded = false;
+    for (const std::int32_t i : island.island.bodies)
+      excluded =
+          excluded || articulations_.isLink(i) || !state_.forces[i].isZero(0.0) ||
+          !state_.torques[i].isZero(0.0) ||
+          (step_.stabilized && step_.solveInverseInertias[i] != state_.worldInverseInertias[i]);
+    if (excluded) continue;
+    island.symmetricStep = true;
+    for (const std::int32_t i : island.island.bodies)
+      if (state_.isDynamic(i)) state_.linearVelocities[i] -= halfKick;
+    step_.symmetricJoints.insert(step_.symmetricJoints.end(), joints.begin(), joints.end());
+  }
+}
+
+void World::finishJointIslandKicks() {
+  if (step_.symmetricJoints.empty()) return;
+  const Eigen::Vector3d halfKick = 0.5 * step_.h * settings_.gravity;
+  for (const IslandWork& island : step_.work)
+    if (island.symmetricStep)
+      for (const std::int32_t i : island.island.bodies)
+        if (state_.isDynamic(i)) state_.linearVelocities[i] += halfKick;
+  joints_.projectVelocities(state_, step_.symmetricJoints);
+}
+
 void World::projectJointIslandEnergies() {
   if (step_.startEnergies.empty() || !report_.joints.correctionConverged) return;
   for (const IslandWork& island : step_.work) {
@@ -29,7 +73,9 @@ void World::projectJointIslandEnergies() {
     const joints::EnergyTarget energy = joints_.energyTarget(
         island.items[kJointRows], settings_.jointStabilization, state_, anchored, tolerance);
     if (energy == joints::EnergyTarget::None) continue;
-    const double powerWeight = energy == joints::EnergyTarget::Modified ? 0.5 * step_.h : 0.0;
+    // The symmetric step has no first-order term: its modified energy is E to O(h^2).
+    const double powerWeight =
+        energy == joints::EnergyTarget::Modified && !island.symmetricStep ? 0.5 * step_.h : 0.0;
     bool forced = false;
     for (const std::int32_t i : island.island.bodies)
       forced = forced || articulations_.isLink(i) || !state_.forces[i].isZero(0.0) ||

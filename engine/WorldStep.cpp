@@ -71,6 +71,7 @@ const StepReport& World::step(double h) {
   buildIslands();     // edges of every row source -> islands with per-source item lists
   step_.stabilized =  // heavy joint loads: the velocity solve's inertias (as data)
       joints_.stabilizedInverseInertias(state_, h, step_.solveInverseInertias);
+  splitJointIslandKicks();  // islands keeping the exact energy: half the kick now, half at the end
   const auto islandsStarted = std::chrono::steady_clock::now();
   executor_.forEach(step_.work.size(), [this](std::size_t k) {  // v* -> v+, island by island
     IslandWork& island = step_.work[k];  // (each writes its own bodies, rows and points only)
@@ -91,6 +92,7 @@ const StepReport& World::step(double h) {
   if (trees) report.treeStageSeconds += secondsSince(treesStarted);
   collision_.clampContinuous(colliders_, state_, h);  // continuous bodies stop at first touch
   correctPenetrations();         // split impulse (positions only); its stage time in the report
+  finishJointIslandKicks();      // islands of ideal joints: the second half kick, J(x+) v+ = 0
   projectJointIslandEnergies();  // islands of ideal joints keep their E~ (chains, pendulums)
   joints_.finishStep(state_, step_.activeJoints, h, report.joints);   // reactions, breakage
   sleep_.update(step_.islands, state_, settings_.sleep, h);           // slow islands fall asleep

@@ -159,6 +159,28 @@ const joints::RowJacobian& side(const std::vector<joints::ConstraintEval>& at,
   return t.sideB ? at[t.joint].jacobianB : at[t.joint].jacobianA;
 }
 
+// v += M^-1 J^T p on every touched body, J the rows of `along`.
+void applyRowImpulses(geometry::BodyState& state, const std::vector<joints::ConstraintEval>& along,
+                      const Eigen::VectorXd& p, const Workspace& w) {
+  for (const Workspace::Touch& t : w.touches) {
+    const joints::RowJacobian& J = side(along, t);
+    if (J.rows() == 3) {  // ball joints: fixed sizes
+      const Eigen::Vector3d impulse = p.segment<3>(w.offset[t.joint]);
+      const Eigen::Map<const Rows3> rows(J.data());
+      state.linearVelocities[t.body] +=
+          state.inverseMasses[t.body] * (rows.leftCols<3>().transpose() * impulse);
+      state.angularVelocities[t.body] +=
+          state.worldInverseInertias[t.body] * (rows.rightCols<3>().transpose() * impulse);
+      continue;
+    }
+    const auto impulse = p.segment(w.offset[t.joint], J.rows());
+    state.linearVelocities[t.body] +=
+        state.inverseMasses[t.body] * (J.leftCols<3>().transpose() * impulse);
+    state.angularVelocities[t.body] +=
+        state.worldInverseInertias[t.body] * (J.rightCols<3>().transpose() * impulse);
+  }
+}
+
 // w.minvJt = M^-1 J^T per touch, J the rows of `impulsesAt` (the Newton passes share the start's).
 void inverseMassTimesRows(const geometry::BodyState& state,
                           const std::vector<joints::ConstraintEval>& impulsesAt, Workspace& w) {
@@ -243,6 +265,46 @@ bool solveSymmetric(Workspace& w, Eigen::VectorXd& p) {
   return true;
 }
 
+// w.start, w.offset and w.minvJt for the joints at the bodies' current poses, the structure
+// rebuilt when it changed; returns the compliance of every row, 1e-10 of the largest diagonal
+// entry of J M^-1 J^T (0 when no joint touches a dynamic body).
+double rowsAtCurrentPoses(const geometry::BodyState& state,
+                          std::span<const joints::JointDef* const> joints, Workspace& w) {
+  const auto jointCount = static_cast<int>(joints.size());
+  w.start.resize(jointCount);
+  w.offset.assign(jointCount + 1, 0);
+  for (int j = 0; j < jointCount; ++j) {
+    const joints::JointDef& def = *joints[j];
+    const auto pose = [&](const geometry::BodyId& id) {
+      return id.valid() ? state.poses[id.index] : geometry::Pose::identity();
+    };
+    joints::evaluateJoint(def, pose(def.bodyA), pose(def.bodyB), w.start[j]);
+    w.offset[j + 1] = w.offset[j] + w.start[j].rows();
+  }
+  const int n = w.offset[jointCount];
+  {
+    std::vector<int>& key = w.key;  // compared in place: no allocation when unchanged
+    std::vector<int> fresh;
+    fresh.swap(w.keyScratch);
+    structureKey(state, joints, w, fresh);
+    if (fresh != key) {
+      key = fresh;
+      buildStructure(state, joints, w);
+    }
+    w.keyScratch.swap(fresh);
+  }
+  inverseMassTimesRows(state, w.start, w);
+  w.target.setZero(n);  // the diagonal of J M^-1 J^T, summed over the joint's sides
+  for (std::size_t t = 0; t < w.touches.size(); ++t) {
+    const joints::RowJacobian& J = side(w.start, w.touches[t]);
+    const int first = w.offset[w.touches[t].joint];
+    for (Eigen::Index r = 0; r < J.rows(); ++r)
+      w.target[first + r] += J.row(r).dot(w.minvJt[t].col(r));
+  }
+  const double maxDiagonal = n > 0 ? w.target.maxCoeff() : 0.0;
+  return maxDiagonal > 0.0 ? 1e-10 * maxDiagonal : 0.0;
+}
+
 }  // namespace
 
 geometry::Pose predictPose(const geometry::BodyState& state, std::size_t i, double h) {
@@ -281,43 +343,13 @@ void correctPredictedState(geometry::BodyState& state,
   if (jointCount == 0) return;
 
   // Jacobians at the start of the step (fixed through the iteration, as in Bender's method).
-  w.start.resize(jointCount);
-  w.offset.assign(jointCount + 1, 0);
+  const double compliance = rowsAtCurrentPoses(state, joints, w);
   for (int j = 0; j < jointCount; ++j) {
-    const joints::JointDef& def = *joints[j];
-    const auto pose = [&](const geometry::BodyId& id) {
-      return id.valid() ? state.poses[id.index] : geometry::Pose::identity();
-    };
-    joints::evaluateJoint(def, pose(def.bodyA), pose(def.bodyB), w.start[j]);
-    w.offset[j + 1] = w.offset[j] + w.start[j].rows();
     result.impulses[j] = joints::RowVector::Zero(w.start[j].rows());
     result.impulsesOnB[j].setZero();
   }
+  if (compliance <= 0.0) return;  // no joint touches a dynamic body
   const int n = w.offset[jointCount];
-  {
-    std::vector<int>& key = w.key;  // compared in place: no allocation when unchanged
-    std::vector<int> fresh;
-    fresh.swap(w.keyScratch);
-    structureKey(state, joints, w, fresh);
-    if (fresh != key) {
-      key = fresh;
-      buildStructure(state, joints, w);
-    }
-    w.keyScratch.swap(fresh);
-  }
-
-  // A = J M^-1 J^T at the start: its largest diagonal entry scales the compliance of every row.
-  inverseMassTimesRows(state, w.start, w);
-  w.target.setZero(n);  // the diagonal of A, summed over the joint's sides
-  for (std::size_t t = 0; t < w.touches.size(); ++t) {
-    const joints::RowJacobian& J = side(w.start, w.touches[t]);
-    const int first = w.offset[w.touches[t].joint];
-    for (Eigen::Index r = 0; r < J.rows(); ++r)
-      w.target[first + r] += J.row(r).dot(w.minvJt[t].col(r));
-  }
-  const double maxDiagonal = n > 0 ? w.target.maxCoeff() : 0.0;
-  if (maxDiagonal <= 0.0) return;  // no joint touches a dynamic body
-  const double compliance = 1e-10 * maxDiagonal;
 
   Eigen::VectorXd& drift = w.drift;
   drift.resize(n);
@@ -345,23 +377,7 @@ void correctPredictedState(geometry::BodyState& state,
   };
   const auto applyImpulse = [&](const Eigen::VectorXd& p,
                                 const std::vector<joints::ConstraintEval>& along) {
-    for (const Workspace::Touch& t : w.touches) {
-      const joints::RowJacobian& J = side(along, t);
-      if (J.rows() == 3) {  // ball joints: fixed sizes
-        const Eigen::Vector3d impulse = p.segment<3>(w.offset[t.joint]);
-        const Eigen::Map<const Rows3> rows(J.data());
-        state.linearVelocities[t.body] +=
-            state.inverseMasses[t.body] * (rows.leftCols<3>().transpose() * impulse);
-        state.angularVelocities[t.body] +=
-            state.worldInverseInertias[t.body] * (rows.rightCols<3>().transpose() * impulse);
-        continue;
-      }
-      const auto impulse = p.segment(w.offset[t.joint], w.start[t.joint].rows());
-      state.linearVelocities[t.body] +=
-          state.inverseMasses[t.body] * (J.leftCols<3>().transpose() * impulse);
-      state.angularVelocities[t.body] +=
-          state.worldInverseInertias[t.body] * (J.rightCols<3>().transpose() * impulse);
-    }
+    applyRowImpulses(state, along, p, w);
   };
   const auto saveVelocities = [&] {
     w.saved.clear();
@@ -446,6 +462,45 @@ void correctPredictedState(geometry::BodyState& state,
   result.converged = largest <= settings.tolerance;
   for (int j = 0; j < jointCount; ++j) {
     result.impulses[j] = total.segment(w.offset[j], w.start[j].rows());
+    result.impulsesOnB[j] = w.start[j].jacobianB.transpose() * result.impulses[j];
+  }
+}
+
+void projectJointVelocities(geometry::BodyState& state,
+                            std::span<const joints::JointDef* const> joints,
+                            PredictedStateWorkspace& w, PredictedStateResult& result) {
+  const auto jointCount = static_cast<int>(joints.size());
+  result.iterations = 0;
+  result.initialError = result.finalError = 0.0;
+  result.converged = true;
+  result.impulses.resize(jointCount);
+  result.impulsesOnB.resize(jointCount);
+  if (jointCount == 0) return;
+  const double compliance = rowsAtCurrentPoses(state, joints, w);
+  for (int j = 0; j < jointCount; ++j) {
+    result.impulses[j] = joints::RowVector::Zero(w.start[j].rows());
+    result.impulsesOnB[j].setZero();
+  }
+  if (compliance <= 0.0) return;
+  // -J v: the bodies that are not touched (the world, static bodies) do not move.
+  w.target.setZero(w.offset[jointCount]);
+  for (const Workspace::Touch& t : w.touches) {
+    const joints::RowJacobian& J = side(w.start, t);
+    w.target.segment(w.offset[t.joint], J.rows()) -=
+        J.leftCols<3>() * state.linearVelocities[t.body] +
+        J.rightCols<3>() * state.angularVelocities[t.body];
+  }
+  result.initialError = w.target.cwiseAbs().maxCoeff();
+  assemble(w.start, compliance, w);
+  if (!solveSymmetric(w, w.p) || !w.p.allFinite()) {
+    result.converged = false;
+    result.finalError = result.initialError;
+    return;
+  }
+  applyRowImpulses(state, w.start, w.p, w);
+  result.iterations = 1;
+  for (int j = 0; j < jointCount; ++j) {
+    result.impulses[j] = w.p.segment(w.offset[j], w.start[j].rows());
     result.impulsesOnB[j] = w.start[j].jacobianB.transpose() * result.impulses[j];
   }
 }

@@ -115,4 +115,15 @@ void correctPredictedState(geometry::BodyState& state,
                            const joints::PredictedStateSettings& settings, double h,
                            PredictedStateWorkspace& workspace, PredictedStateResult& result);
 
+/// The second half of the symmetric (RATTLE) step of an island of ideal joints (Andersen 1983;
+/// Hairer, Lubich, Wanner, "Geometric Numerical Integration", sec. VII.1.4; docs/tuning.md,
+/// "Chains keep their energy"): the velocities of the joints' dynamic bodies projected onto
+/// J(x) v = 0 at their current poses in the kinetic metric, (J M^-1 J^T + eps I) p = -J v and
+/// v += M^-1 J^T p (eps as in the correction). One linear solve: J is fixed. `result` gets the
+/// impulses p, `initialError` the largest |J v| before [m/s or rad/s], `converged` false only when
+/// the factorization fails (the velocities are then unchanged).
+void projectJointVelocities(geometry::BodyState& state,
+                            std::span<const joints::JointDef* const> joints,
+                            PredictedStateWorkspace& workspace, PredictedStateResult& result);
+
 }  // namespace coulomb::integrators
