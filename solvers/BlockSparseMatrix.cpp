@@ -64,13 +64,19 @@ BlockSparseMatrix BlockSparseMatrix::fromBlockCsr(std::vector<int> blockSizes,
   return m;
 }
 
+void BlockSparseMatrix::assignPattern(const std::vector<int>& blockSizes,
+                                      const std::vector<int>& rowStart,
+                                      const std::vector<int>& blockColumns) {
+  blockSize_.assign(blockSizes.begin(), blockSizes.end());
+  rowStart_.assign(rowStart.begin(), rowStart.end());
+  col_.assign(blockColumns.begin(), blockColumns.end());
+}
+
 void BlockSparseMatrix::assignBlockCsr(const std::vector<int>& blockSizes,
                                        const std::vector<int>& rowStart,
                                        const std::vector<int>& blockColumns,
                                        const std::vector<double>& values) {
-  blockSize_.assign(blockSizes.begin(), blockSizes.end());
-  rowStart_.assign(rowStart.begin(), rowStart.end());
-  col_.assign(blockColumns.begin(), blockColumns.end());
+  assignPattern(blockSizes, rowStart, blockColumns);
   values_.assign(values.begin(), values.end());
   indexBlockCsr();
 }
@@ -79,9 +85,7 @@ void BlockSparseMatrix::adoptBlockCsr(const std::vector<int>& blockSizes,
                                       const std::vector<int>& rowStart,
                                       const std::vector<int>& blockColumns,
                                       std::vector<double>& values) {
-  blockSize_.assign(blockSizes.begin(), blockSizes.end());
-  rowStart_.assign(rowStart.begin(), rowStart.end());
-  col_.assign(blockColumns.begin(), blockColumns.end());
+  assignPattern(blockSizes, rowStart, blockColumns);
   values_.swap(values);
   indexBlockCsr();
 }

@@ -78,6 +78,9 @@ class BlockSparseMatrix {
 
  private:
   void indexBlockCsr();  // offsets, value starts and diagonal from the CSR arrays; validates
+  // The block-CSR pattern (sizes, row starts, columns) copied into this matrix's storage.
+  void assignPattern(const std::vector<int>& blockSizes, const std::vector<int>& rowStart,
+                     const std::vector<int>& blockColumns);
   std::vector<int> blockSize_, blockOffset_;
   std::vector<int> rowStart_, col_, valueStart_, diagonal_;
   std::vector<double> values_;

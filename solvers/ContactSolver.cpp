@@ -100,7 +100,7 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     report.note(std::string("cannot prepare the problem: ") + e.what());
     return finish();
   }
-  // Start: the given one, else the warm start, kept only if it beats r = 0
+  // Start: the given one, else the warm start, kept when it is within the tolerance or beats r = 0
   // (docs/solver-derivations.md (3.6)). Each candidate's residual keeps its dv (body space), handed
   // to the solver with the chosen start (PreparedProblem::start) so that it does not compute them
   // again; u is always W r + q for the current r until a solver runs.
@@ -109,7 +109,9 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   work.stepQ.resize(n);  // sized with the others: its first use in a steady step allocates nothing
   work.arrived.resize(n);
   double eAbsolute = 0.0;  // e's absolute value (PreparedProblem::recordEnd)
-  double e = prepared.residual(r, u, dv, &eAbsolute);
+  double e = 0.0;
+  // r = 0's residual: the bar a start must meet.
+  auto evaluateZero = [&] { e = prepared.residual(r, u, dv, &eAbsolute); };
   // work.s (prepared variables) becomes r when its residual is below `e` (or at it).
   auto keepIfBetter = [&](bool tieKeeps) {
     Eigen::VectorXd &s = work.s, &dvs = work.dvs, &us = work.us;
@@ -134,11 +136,31 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // A direct solver (ignoresStart) computes its answer from no start: trying one would cost a
   // residual (a product with W) for nothing.
   const Eigen::VectorXd* candidate = ignoresStart() ? nullptr : start ? start : warm;
-  if (candidate) {
-    if (candidate->size() != n || !candidate->allFinite())
-      report.note("start ignored (wrong size or not finite)");
-    else if (!tryStart(*candidate, true))
+  // A start within the tolerance is an answer whatever r = 0 gives, so r = 0 is evaluated only
+  // when the start misses it (a steady stack's warm start: one residual instead of two).
+  if (candidate && candidate->size() == n && candidate->allFinite()) {
+    Eigen::VectorXd &s = work.s, &dvs = work.dvs, &us = work.us;
+    prepared.fromOriginal(*candidate, s);
+    prepared.project(s);
+    double esAbsolute = 0.0;
+    const double es = prepared.residual(s, us, dvs, &esAbsolute);
+    bool keep = es <= options.tolerance;
+    if (!keep) {
+      evaluateZero();
+      keep = es <= e;
+    }
+    if (keep) {
+      r.swap(s);
+      e = es;
+      eAbsolute = esAbsolute;
+      dv.swap(dvs);
+      u.swap(us);
+    } else {
       report.note("warm start ignored: r = 0 has a smaller residual");
+    }
+  } else {
+    if (candidate) report.note("start ignored (wrong size or not finite)");
+    evaluateZero();
   }
   // The all-sticking start (StickingStart.hpp). Without a warm start for every row (a fresh
   // stack, a box landing) it is tried before the solver; with one it is a restart, tried only if
