@@ -30,7 +30,6 @@ void World::splitJointIslandKicks() {
   if (step_.startEnergies.empty()) return;  // no joint asks for an energy target
   const Eigen::Vector3d halfKick = 0.5 * step_.h * settings_.gravity;
   for (IslandWork& island : step_.work) {
-    island.symmetricStep = false;
     const std::vector<std::int32_t>& joints = island.items[kJointRows];
     if (joints.empty() || !island.items[kContactRows].empty() || !island.items[kTreeRows].empty())
       continue;

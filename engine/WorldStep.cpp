@@ -184,6 +184,7 @@ void World::buildIslands() {
       work.items[edges.owners[e]].push_back(edges.items[e]);
     work.penetration.reset();
     work.penetrationSeconds = 0.0;
+    work.symmetricStep = false;  // World::splitJointIslandKicks decides
   }
 }
 
