@@ -305,6 +305,27 @@ double rowsAtCurrentPoses(const geometry::BodyState& state,
   return maxDiagonal > 0.0 ? 1e-10 * maxDiagonal : 0.0;
 }
 
+// `result` reset (no pass, zero impulses per joint, `converged` as given) and the joints' rows at
+// the bodies' current poses (rowsAtCurrentPoses); returns their compliance, 0 when there is
+// nothing to do (no joint, or none on a dynamic body).
+double resetAtCurrentPoses(const geometry::BodyState& state,
+                           std::span<const joints::JointDef* const> joints, Workspace& w,
+                           PredictedStateResult& result, bool converged) {
+  const auto jointCount = static_cast<int>(joints.size());
+  result.iterations = 0;
+  result.initialError = result.finalError = 0.0;
+  result.converged = converged;
+  result.impulses.resize(jointCount);
+  result.impulsesOnB.resize(jointCount);
+  if (jointCount == 0) return 0.0;
+  const double compliance = rowsAtCurrentPoses(state, joints, w);
+  for (int j = 0; j < jointCount; ++j) {
+    result.impulses[j] = joints::RowVector::Zero(w.start[j].rows());
+    result.impulsesOnB[j].setZero();
+  }
+  return compliance;
+}
+
 }  // namespace
 
 geometry::Pose predictPose(const geometry::BodyState& state, std::size_t i, double h) {
@@ -334,21 +355,10 @@ void correctPredictedState(geometry::BodyState& state,
                            std::span<const joints::JointDef* const> joints,
                            const joints::PredictedStateSettings& settings, double h,
                            PredictedStateWorkspace& w, PredictedStateResult& result) {
-  result.iterations = 0;
-  result.initialError = result.finalError = 0.0;
-  result.converged = false;
-  const auto jointCount = static_cast<int>(joints.size());
-  result.impulses.resize(jointCount);
-  result.impulsesOnB.resize(jointCount);
-  if (jointCount == 0) return;
-
   // Jacobians at the start of the step (fixed through the iteration, as in Bender's method).
-  const double compliance = rowsAtCurrentPoses(state, joints, w);
-  for (int j = 0; j < jointCount; ++j) {
-    result.impulses[j] = joints::RowVector::Zero(w.start[j].rows());
-    result.impulsesOnB[j].setZero();
-  }
-  if (compliance <= 0.0) return;  // no joint touches a dynamic body
+  const double compliance = resetAtCurrentPoses(state, joints, w, result, false);
+  if (compliance <= 0.0) return;  // no joint, or none touches a dynamic body
+  const auto jointCount = static_cast<int>(joints.size());
   const int n = w.offset[jointCount];
 
   Eigen::VectorXd& drift = w.drift;
@@ -469,19 +479,9 @@ void correctPredictedState(geometry::BodyState& state,
 void projectJointVelocities(geometry::BodyState& state,
                             std::span<const joints::JointDef* const> joints,
                             PredictedStateWorkspace& w, PredictedStateResult& result) {
-  const auto jointCount = static_cast<int>(joints.size());
-  result.iterations = 0;
-  result.initialError = result.finalError = 0.0;
-  result.converged = true;
-  result.impulses.resize(jointCount);
-  result.impulsesOnB.resize(jointCount);
-  if (jointCount == 0) return;
-  const double compliance = rowsAtCurrentPoses(state, joints, w);
-  for (int j = 0; j < jointCount; ++j) {
-    result.impulses[j] = joints::RowVector::Zero(w.start[j].rows());
-    result.impulsesOnB[j].setZero();
-  }
+  const double compliance = resetAtCurrentPoses(state, joints, w, result, true);
   if (compliance <= 0.0) return;
+  const auto jointCount = static_cast<int>(joints.size());
   // -J v: the bodies that are not touched (the world, static bodies) do not move.
   w.target.setZero(w.offset[jointCount]);
   for (const Workspace::Touch& t : w.touches) {
