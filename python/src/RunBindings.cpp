@@ -100,9 +100,11 @@ RunResult runScene(const engine::io::Scene& scene) {
 
 RunResult run(const py::handle& scene, std::optional<std::uint64_t> steps, std::optional<double> dt,
               std::optional<std::string> solver, std::optional<double> tol,
-              std::optional<int> maxIterations, std::optional<double> mu) {
-  const engine::io::Scene loaded =
-      sceneFrom(scene, overridesFrom(steps, dt, std::move(solver), tol, maxIterations, mu));
+              std::optional<int> maxIterations, std::optional<double> mu,
+              std::optional<std::string> jointEnergy) {
+  const engine::io::Scene loaded = sceneFrom(
+      scene,
+      overridesFrom(steps, dt, std::move(solver), tol, maxIterations, mu, std::move(jointEnergy)));
   py::gil_scoped_release released;
   return runScene(loaded);
 }
@@ -116,12 +118,13 @@ struct BatchItem {
 std::vector<RunResult> runBatch(const py::iterable& items, int threads,
                                 std::optional<std::uint64_t> steps, std::optional<double> dt,
                                 std::optional<std::string> solver, std::optional<double> tol,
-                                std::optional<int> maxIterations, std::optional<double> mu) {
+                                std::optional<int> maxIterations, std::optional<double> mu,
+                                std::optional<std::string> jointEnergy) {
   if (threads < 0) throw py::value_error("threads: expected >= 0 (0 = every core)");
   if (py::isinstance<py::str>(items) || py::isinstance<py::dict>(items))
     throw py::value_error("scenes: expected a list of scenes or worlds, got one scene");
   const scenes::SceneOverrides overrides =
-      overridesFrom(steps, dt, std::move(solver), tol, maxIterations, mu);
+      overridesFrom(steps, dt, std::move(solver), tol, maxIterations, mu, std::move(jointEnergy));
   std::vector<BatchItem> batch;
   for (const py::handle& item : items) {
     if (py::isinstance<PyWorld>(item)) {
@@ -311,13 +314,15 @@ void bindRun(py::module_& m) {
   m.def("run", &run, py::arg("scene"), py::kw_only(), py::arg("steps") = py::none(),
         py::arg("dt") = py::none(), py::arg("solver") = py::none(), py::arg("tol") = py::none(),
         py::arg("max_iterations") = py::none(), py::arg("mu") = py::none(),
+        py::arg("joint_energy") = py::none(),
         "Runs a scene (built-in name, JSON or .urdf file, or a dict in the JSON scene format) "
         "for `steps` steps (default: the scene's) and returns its final state. Overrides as "
-        "`coulomb run`: dt, solver, tol, max_iterations, mu (every shape's friction).");
+        "`coulomb run`: dt, solver, tol, max_iterations, mu (every shape's friction), "
+        "joint_energy (none, modified or exact: every joint's energy target).");
   m.def("run_batch", &runBatch, py::arg("scenes"), py::kw_only(), py::arg("threads") = 1,
         py::arg("steps") = py::none(), py::arg("dt") = py::none(), py::arg("solver") = py::none(),
         py::arg("tol") = py::none(), py::arg("max_iterations") = py::none(),
-        py::arg("mu") = py::none(),
+        py::arg("mu") = py::none(), py::arg("joint_energy") = py::none(),
         "Runs many scenes (names, files, dicts) or coulomb.World objects (stepped in place by "
         "`steps`) on `threads` C++ threads (0 = every core) with the GIL released; the results, "
         "in input order, are those of running them one by one.");

@@ -23,7 +23,8 @@ std::string hashText(std::uint64_t hash) {
 
 scenes::SceneOverrides overridesFrom(std::optional<std::uint64_t> steps, std::optional<double> dt,
                                      std::optional<std::string> solver, std::optional<double> tol,
-                                     std::optional<int> maxIterations, std::optional<double> mu) {
+                                     std::optional<int> maxIterations, std::optional<double> mu,
+                                     std::optional<std::string> jointEnergy) {
   scenes::SceneOverrides o;
   o.steps = steps;
   o.timeStep = dt;
@@ -31,6 +32,7 @@ scenes::SceneOverrides overridesFrom(std::optional<std::uint64_t> steps, std::op
   o.tolerance = tol;
   o.maxIterations = maxIterations;
   o.friction = mu;
+  o.jointEnergy = std::move(jointEnergy);
   return o;
 }
 

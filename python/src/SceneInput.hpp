@@ -26,7 +26,8 @@ std::string hashText(std::uint64_t hash);
 
 scenes::SceneOverrides overridesFrom(std::optional<std::uint64_t> steps, std::optional<double> dt,
                                      std::optional<std::string> solver, std::optional<double> tol,
-                                     std::optional<int> maxIterations, std::optional<double> mu);
+                                     std::optional<int> maxIterations, std::optional<double> mu,
+                                     std::optional<std::string> jointEnergy);
 
 /// The scene with the overrides applied. Needs the GIL; throws CoulombError (bad scene) or
 /// ValueError (not a name, path or dict).

@@ -78,9 +78,10 @@ Eigen::Vector3d vector3(const py::handle& v, const char* name) {
 std::shared_ptr<PyWorld> makeWorld(const py::object& scene, std::optional<double> dt,
                                    std::optional<std::string> solver, std::optional<double> tol,
                                    std::optional<int> maxIterations, std::optional<double> mu,
+                                   std::optional<std::string> jointEnergy,
                                    const py::object& gravity, const py::object& threads) {
-  const scenes::SceneOverrides overrides =
-      overridesFrom(std::nullopt, dt, std::move(solver), tol, maxIterations, mu);
+  const scenes::SceneOverrides overrides = overridesFrom(std::nullopt, dt, std::move(solver), tol,
+                                                         maxIterations, mu, std::move(jointEnergy));
   engine::io::Scene loaded;
   if (!scene.is_none()) {
     loaded = sceneFrom(scene, overrides);
@@ -313,7 +314,8 @@ void bindWorldClass(py::module_& m) {
       .def(py::init(&makeWorld), py::arg("scene") = py::none(), py::kw_only(),
            py::arg("dt") = py::none(), py::arg("solver") = py::none(), py::arg("tol") = py::none(),
            py::arg("max_iterations") = py::none(), py::arg("mu") = py::none(),
-           py::arg("gravity") = py::none(), py::arg("threads") = py::none())
+           py::arg("joint_energy") = py::none(), py::arg("gravity") = py::none(),
+           py::arg("threads") = py::none())
       .def(
           "step",
           [](PyWorld& w, int n) {

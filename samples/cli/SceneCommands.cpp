@@ -183,6 +183,10 @@ void registerSceneCommands(CLI::App& app) {
   runCommand->add_option("--mu", options->overrides.friction,
                          "Friction coefficient of every material of the scene (every shape of "
                          "every body and link; default: the scene's)");
+  runCommand->add_option("--joint-energy", options->overrides.jointEnergy,
+                         "Energy target of every joint under the predicted-state policy: none, "
+                         "modified or exact (exact: the symmetric step, E never rises; "
+                         "docs/tuning.md \"Chains keep their energy\"; default: the scene's)");
   runCommand->add_option("--out", options->trajectoryPath,
                          "Write every moving body's state at every step as CSV");
   runCommand->add_option("--stats", options->statsPath,

@@ -60,6 +60,16 @@ void applyOverrides(engine::io::Scene& scene, const SceneOverrides& overrides) {
       for (auto& link : articulation.links)
         for (engine::ShapeDesc& shape : link.shapes) shape.material.friction = *overrides.friction;
   }
+  if (overrides.jointEnergy) {
+    const std::optional<joints::EnergyTarget> energy =
+        joints::energyTargetFromName(*overrides.jointEnergy);
+    if (!energy)
+      throw CoulombError("joint energy override: must be none, modified or exact (got \"" +
+                         *overrides.jointEnergy + "\")");
+    scene.settings.jointStabilization.predictedState.energy = *energy;
+    for (engine::io::SceneJoint& joint : scene.joints)  // a joint's own policy too
+      if (joint.def.stabilization) joint.def.stabilization->predictedState.energy = *energy;
+  }
 }
 
 engine::io::Scene resolveScene(const std::string& nameOrPath, const SceneOverrides& overrides) {

@@ -1,7 +1,8 @@
 #pragma once
 // A scene with a caller's overrides (time step, step count, solver, tolerance, iteration cap,
-// friction, URDF base): what `coulomb run --dt --steps --solver --tol --max-iter --mu` and
-// Python's coulomb.run(dt=, steps=, solver=, tol=, max_iterations=, mu=) change, in one place.
+// friction, joints' energy target, URDF base): what `coulomb run --dt --steps --solver --tol
+// --max-iter --mu --joint-energy` and Python's coulomb.run(dt=, steps=, solver=, tol=,
+// max_iterations=, mu=, joint_energy=) change, in one place.
 #include <coulomb/io/SceneLoader.hpp>
 
 #include <cstdint>
@@ -17,9 +18,12 @@ struct SceneOverrides {
   std::optional<int> maxIterations;  // solver iteration cap per island (0 = solver default)
   std::optional<double> tolerance;   // common relative residual target
   std::optional<double> friction;    // mu of every shape's material
-  bool urdfFloating = false;         // a .urdf scene: floating base (default fixed)
-  bool urdfLimp = false;             // a .urdf scene: no motors holding the joints
-  bool urdfMaximal = false;          // a .urdf scene: free bodies and maximal joints
+  // The energy target of every joint under the predicted-state policy: "none", "modified" or
+  // "exact" (joints::PredictedStateSettings::energy; docs/tuning.md "Chains keep their energy").
+  std::optional<std::string> jointEnergy;
+  bool urdfFloating = false;           // a .urdf scene: floating base (default fixed)
+  bool urdfLimp = false;               // a .urdf scene: no motors holding the joints
+  bool urdfMaximal = false;            // a .urdf scene: free bodies and maximal joints
   std::optional<std::string> threads;  // "hardware" or a count >= 1 (WorldSettings::threads)
 };
 
