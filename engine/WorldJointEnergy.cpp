@@ -7,8 +7,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace coulomb::engine {
+
+namespace {
+
+// Some body of the island is a tree's link or has an applied force or torque this step: work
+// enters that the joints' energy does not account for.
+bool drivenFromOutside(std::span<const std::int32_t> bodies, const geometry::BodyState& state,
+                       const ArticulationStage& articulations) {
+  return std::any_of(bodies.begin(), bodies.end(), [&](std::int32_t i) {
+    return articulations.isLink(i) || !state.forces[i].isZero(0.0) || !state.torques[i].isZero(0.0);
+  });
+}
+
+}  // namespace
 
 void World::recordStartEnergies() {
   step_.startEnergies.clear();
@@ -38,13 +52,11 @@ void World::splitJointIslandKicks() {
     if (joints_.energyTarget(joints, settings_.jointStabilization, state_, anchored, tolerance) !=
         joints::EnergyTarget::Exact)
       continue;
-    bool excluded = false;
+    bool stabilized = false;
     for (const std::int32_t i : island.island.bodies)
-      excluded =
-          excluded || articulations_.isLink(i) || !state_.forces[i].isZero(0.0) ||
-          !state_.torques[i].isZero(0.0) ||
-          (step_.stabilized && step_.solveInverseInertias[i] != state_.worldInverseInertias[i]);
-    if (excluded) continue;
+      stabilized = stabilized || (step_.stabilized &&
+                                  step_.solveInverseInertias[i] != state_.worldInverseInertias[i]);
+    if (stabilized || drivenFromOutside(island.island.bodies, state_, articulations_)) continue;
     island.symmetricStep = true;
     for (const std::int32_t i : island.island.bodies)
       if (state_.isDynamic(i)) state_.linearVelocities[i] -= halfKick;
@@ -72,14 +84,10 @@ void World::projectJointIslandEnergies() {
     const joints::EnergyTarget energy = joints_.energyTarget(
         island.items[kJointRows], settings_.jointStabilization, state_, anchored, tolerance);
     if (energy == joints::EnergyTarget::None) continue;
-    // The symmetric step has no first-order term: its modified energy is E to O(h^2).
-    const double powerWeight =
-        energy == joints::EnergyTarget::Modified && !island.symmetricStep ? 0.5 * step_.h : 0.0;
-    bool forced = false;
-    for (const std::int32_t i : island.island.bodies)
-      forced = forced || articulations_.isLink(i) || !state_.forces[i].isZero(0.0) ||
-               !state_.torques[i].isZero(0.0);
-    if (forced) continue;  // applied forces do work the projection cannot know
+    // (`exact` islands take the symmetric step, which has no first-order term to keep.)
+    const double powerWeight = energy == joints::EnergyTarget::Modified ? 0.5 * step_.h : 0.0;
+    // applied forces do work the projection cannot know
+    if (drivenFromOutside(island.island.bodies, state_, articulations_)) continue;
     // The power term at the start of the step, with the tangent velocities of the step's start
     // where the joints give them (else the start velocities).
     const std::span<const std::int32_t> joints = island.items[kJointRows];

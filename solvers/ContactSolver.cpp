@@ -112,18 +112,22 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   double e = 0.0;
   // r = 0's residual: the bar a start must meet.
   auto evaluateZero = [&] { e = prepared.residual(r, u, dv, &eAbsolute); };
-  // work.s (prepared variables) becomes r when its residual is below `e` (or at it).
-  auto keepIfBetter = [&](bool tieKeeps) {
+  // work.s (prepared variables) becomes r when `keep` accepts its residual.
+  auto keepIf = [&](auto&& keep) {
     Eigen::VectorXd &s = work.s, &dvs = work.dvs, &us = work.us;
     double esAbsolute = 0.0;
     const double es = prepared.residual(s, us, dvs, &esAbsolute);
-    if (!(es < e || (tieKeeps && es == e))) return false;
+    if (!keep(es)) return false;
     r.swap(s);
     e = es;
     eAbsolute = esAbsolute;
     dv.swap(dvs);
     u.swap(us);
     return true;
+  };
+  // ... when its residual is below `e` (or at it).
+  auto keepIfBetter = [&](bool tieKeeps) {
+    return keepIf([&](double es) { return es < e || (tieKeeps && es == e); });
   };
   // Projected onto the constraint set, kept when its residual is at most `e` (or below it).
   auto tryStart = [&](const Eigen::VectorXd& candidate, bool tieKeeps) {
@@ -139,25 +143,14 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
   // A start within the tolerance is an answer whatever r = 0 gives, so r = 0 is evaluated only
   // when the start misses it (a steady stack's warm start: one residual instead of two).
   if (candidate && candidate->size() == n && candidate->allFinite()) {
-    Eigen::VectorXd &s = work.s, &dvs = work.dvs, &us = work.us;
-    prepared.fromOriginal(*candidate, s);
-    prepared.project(s);
-    double esAbsolute = 0.0;
-    const double es = prepared.residual(s, us, dvs, &esAbsolute);
-    bool keep = es <= options.tolerance;
-    if (!keep) {
+    prepared.fromOriginal(*candidate, work.s);
+    prepared.project(work.s);
+    const bool kept = keepIf([&](double es) {
+      if (es <= options.tolerance) return true;
       evaluateZero();
-      keep = es <= e;
-    }
-    if (keep) {
-      r.swap(s);
-      e = es;
-      eAbsolute = esAbsolute;
-      dv.swap(dvs);
-      u.swap(us);
-    } else {
-      report.note("warm start ignored: r = 0 has a smaller residual");
-    }
+      return es <= e;
+    });
+    if (!kept) report.note("warm start ignored: r = 0 has a smaller residual");
   } else {
     if (candidate) report.note("start ignored (wrong size or not finite)");
     evaluateZero();
