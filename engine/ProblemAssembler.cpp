@@ -301,14 +301,23 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
     out.degreesOfFreedom +=
         articulations->addDelassusBlocks(rows, state, scratch.trees, treeBlocks);
 
-  bool allWarm = blockCount > 0;
-  for (const joints::RowBlock& b : rows.blocks) allWarm = allWarm && b.warmStart.size() == b.rows();
-  if (allWarm) {
+  // One warm-started block makes the island's warm start; a block without one (a contact new this
+  // step) starts at r = 0 within it. Dropping the whole start for one new contact made a settling
+  // packing or a landing column solve cold on every step that a contact appeared.
+  bool anyWarm = false;
+  for (const joints::RowBlock& b : rows.blocks) anyWarm = anyWarm || b.warmStart.size() == b.rows();
+  if (anyWarm) {
     if (!out.problem.warmStart) out.problem.warmStart.emplace();
     Eigen::VectorXd& warm = *out.problem.warmStart;
     warm.resize(size);
-    for (int k = 0; k < blockCount; ++k)
-      warm.segment(out.slots[k].offset, out.slots[k].rows) = rows.blocks[k].warmStart;
+    for (int k = 0; k < blockCount; ++k) {
+      const joints::RowBlock& b = rows.blocks[k];
+      auto slot = warm.segment(out.slots[k].offset, out.slots[k].rows);
+      if (b.warmStart.size() == b.rows())
+        slot = b.warmStart;
+      else
+        slot.setZero();
+    }
   } else {
     out.problem.warmStart.reset();
   }

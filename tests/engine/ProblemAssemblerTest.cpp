@@ -155,7 +155,9 @@ TEST(ProblemAssembler, AppliedImpulseChangesVelocityByWTimesLambda) {
   EXPECT_EQ(state.linearVelocities[0], Eigen::Vector3d::Zero());  // static never moves
 }
 
-TEST(ProblemAssembler, WarmStartOnlyWhenEveryBlockHasOne) {
+// One warm-started block makes the island's warm start; a block without one (a contact new this
+// step) starts at zero within it, the others keep theirs. No block with one: no warm start.
+TEST(ProblemAssembler, WarmStartFromAnyBlockWithNewBlocksAtZero) {
   const auto state = threeBodies();
   auto rows = stackRows(state);
   EXPECT_FALSE(engine::ProblemAssembler().assemble(rows, state).problem.warmStart.has_value());
@@ -163,6 +165,18 @@ TEST(ProblemAssembler, WarmStartOnlyWhenEveryBlockHasOne) {
   const auto assembled = engine::ProblemAssembler().assemble(rows, state);
   ASSERT_TRUE(assembled.problem.warmStart.has_value());
   EXPECT_DOUBLE_EQ((*assembled.problem.warmStart)[6], 0.25);
+
+  ASSERT_GE(rows.blocks.size(), 2u);
+  rows.blocks.front().warmStart.resize(0);  // the first block is new
+  const auto partly = engine::ProblemAssembler().assemble(rows, state);
+  ASSERT_TRUE(partly.problem.warmStart.has_value());
+  const Eigen::VectorXd& warm = *partly.problem.warmStart;
+  ASSERT_EQ(warm.size(), partly.problem.q.size());
+  const int firstRows = partly.slots[0].rows;
+  EXPECT_EQ(warm.segment(partly.slots[0].offset, firstRows).cwiseAbs().maxCoeff(), 0.0);
+  for (std::size_t k = 1; k < rows.blocks.size(); ++k)
+    EXPECT_EQ(warm.segment(partly.slots[k].offset, partly.slots[k].rows).minCoeff(), 0.25)
+        << "block " << k;
 }
 
 // The rows' velocities at the step's start, formed when a solve asks (arrivalRowVelocities): J v_k

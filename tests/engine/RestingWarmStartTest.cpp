@@ -11,6 +11,7 @@
 
 #include <vector>
 
+#include "SimpleBodies.hpp"
 #include "scenes/SceneRegistry.hpp"
 
 using namespace coulomb;
@@ -57,4 +58,35 @@ TEST(RestingWarmStart, AHeavyBoxOnALightOneRestsWithoutNewtonIterations) {
     }
     EXPECT_LT(iterations, 100) << name;  // 1 000 steps: about 500 before
   }
+}
+
+// A box lands on one that rests: the step its new contacts join the resting box's island, the
+// island's problem keeps the resting contacts' warm start and starts the new contacts at zero.
+// Before, one contact without a warm start dropped the whole island's (a settling packing or a
+// landing column then solved cold on every step that a contact appeared).
+TEST(RestingWarmStart, ANewContactKeepsTheIslandsWarmStart) {
+  engine::World world;
+  coulomb::testing::addFloor(world);
+  coulomb::testing::addCube(world, {0, 0, 0.1});
+  coulomb::testing::addCube(world, {0.02, 0.01, 0.5});  // falls 0.2 m onto the first
+  int joinedAt = -1;
+  bool checked = false;
+  int step = 0;
+  world.setProblemObserver([&](std::int32_t, const solvers::ContactProblem& problem) {
+    if (checked || problem.contactCount() < 8) return;  // the ground's 4 and the landing box's 4
+    checked = true;
+    joinedAt = step;
+    ASSERT_TRUE(problem.warmStart.has_value()) << "step " << step;
+    const Eigen::VectorXd& warm = *problem.warmStart;
+    int loaded = 0, zero = 0;
+    for (int c = 0; c < problem.contactCount(); ++c) {
+      if (warm[3 * c] > 0.0) ++loaded;
+      if (warm.segment<3>(3 * c).isZero(0.0)) ++zero;
+    }
+    EXPECT_EQ(loaded, 4) << "the resting box's ground contacts carry its weight";
+    EXPECT_EQ(zero, 4) << "the new contacts start at zero";
+  });
+  for (; step < 60 && !checked; ++step) world.step(0.01);
+  EXPECT_TRUE(checked);
+  EXPECT_GT(joinedAt, 5);  // the first box had rested for a few steps by then
 }
