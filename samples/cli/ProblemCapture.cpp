@@ -83,6 +83,17 @@ void ProblemCapture::capture(std::uint64_t step, std::int32_t island,
   const std::string name =
       sceneName_ + "_step" + std::to_string(step) + "_island" + std::to_string(island);
   pure->name = name;
+  // The warm start the step's solve began from, beside the problem (`coulomb solve --start`), so
+  // a replay can start where the simulation did; padded problems have no start of their size.
+  if (problem.warmStart && problem.warmStart->size() == pure->q.size()) {
+    const std::filesystem::path startPath = directory_ / (name + ".start");
+    std::ofstream start(startPath);
+    solvers::writeVector(*problem.warmStart, start);
+    if (!start) {
+      failure_ = "--capture: cannot write '" + startPath.string() + "'";
+      return;
+    }
+  }
   pure->warmStart.reset();
   const std::filesystem::path path = directory_ / (name + ".fc3d");
   std::ofstream out(path);

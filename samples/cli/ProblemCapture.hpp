@@ -1,10 +1,12 @@
 #pragma once
 // `coulomb run --capture DIR [--capture-step N]`: writes each island's assembled contact problem
 // as DIR/<scene>_step<N>_island<K>.fc3d (fc3d-text 1), so `coulomb solve` can replay it with every
-// solver. Frictionless contacts (a single unilateral row) are written as mu = 0 contacts whose two
-// tangent unknowns are decoupled dummies (W_TT = I, q_T = 0): with mu = 0 the cone forces r_T = 0,
-// so the normal impulse is the same. Rows of other kinds (bilateral, bounded, anisotropic
-// friction) have no fc3d form: such islands are counted and skipped (docs/solvers.md).
+// solver, and the warm start that solve began from (the last step's impulses) as the same name with
+// `.start` (3 numbers per contact; `coulomb solve FILE --start FILE.start`). Frictionless contacts
+// (a single unilateral row) are written as mu = 0 contacts whose two tangent unknowns are decoupled
+// dummies (W_TT = I, q_T = 0): with mu = 0 the cone forces r_T = 0, so the normal impulse is the
+// same. Rows of other kinds (bilateral, bounded, anisotropic friction) have no fc3d form: such
+// islands are counted and skipped (docs/solvers.md).
 #include <coulomb/engine/World.hpp>
 #include <coulomb/solvers/ContactProblem.hpp>
 

@@ -72,8 +72,20 @@ std::string jsonVector(const Eigen::Vector3d& v) {
 void run(const RunOptions& options) {
   const engine::io::Scene scene = loadScene(options.scene, options.overrides);
   engine::World world = buildWorldFor(scene);
-  if (!options.loadSnapshotPath.empty())  // the same scene, continued (io/Snapshot.hpp)
+  if (!options.loadSnapshotPath.empty()) {  // the same scene, continued (io/Snapshot.hpp)
     engine::io::loadSnapshotFile(world, options.loadSnapshotPath);
+    // The snapshot brings the settings it was saved with; what this command line sets for the
+    // solve (solver, tolerance, iteration cap, threads) applies to the continuation, so that one
+    // saved state can be continued with each solver.
+    engine::WorldSettings settings = world.settings();
+    const SceneOverrides& o = options.overrides;
+    if (o.solver) settings.solve.choice = scene.settings.solve.choice;
+    if (o.tolerance) settings.solve.options.tolerance = scene.settings.solve.options.tolerance;
+    if (o.maxIterations)
+      settings.solve.options.maxIterations = scene.settings.solve.options.maxIterations;
+    if (o.threads) settings.threads = scene.settings.threads;
+    world.setSettings(settings);
+  }
 
   std::optional<std::ofstream> trajectory;
   if (!options.trajectoryPath.empty()) {
@@ -203,7 +215,8 @@ void registerSceneCommands(CLI::App& app) {
       ->needs("--capture");
   runCommand->add_option("--load-snapshot", options->loadSnapshotPath,
                          "Continue from this snapshot (saved by --save-snapshot from the same "
-                         "scene and options) for --steps more steps");
+                         "scene) for --steps more steps; --solver, --tol, --max-iter and "
+                         "--threads given here replace the snapshot's");
   runCommand->add_option("--save-snapshot", options->saveSnapshotPath,
                          "Save the whole state after the last step (binary, versioned)");
   runCommand->callback([options] { run(*options); });

@@ -67,13 +67,20 @@ struct SolveArgs {
   int maxIterations = 0;
   double timeLimit = 60.0;
   std::string solutionPath;
+  std::string startPath;
+  bool history = false;
 };
 
 void runSolve(const SolveArgs& a) {
   const solvers::Fc3dReadResult read = solvers::readFc3dText(a.file);
   if (!read.problem)
     throw CommandError(read.error + "\n  (format: fc3d-text 1, see docs/solvers.md)");
-  const solvers::ContactProblem& problem = *read.problem;
+  solvers::ContactProblem problem = *read.problem;
+  if (!a.startPath.empty()) {  // a captured warm start: every solver begins from it
+    std::string error;
+    problem.warmStart = solvers::readVector(a.startPath, problem.q.size(), error);
+    if (!problem.warmStart) throw CommandError("--start: " + error);
+  }
   const solvers::SolverRegistry registry = solvers::SolverRegistry::builtIn();
   std::vector<std::string> names;
   const bool plan = a.solver == "auto" || a.solver.find(',') != std::string::npos ||
@@ -95,6 +102,7 @@ void runSolve(const SolveArgs& a) {
   options.tolerance = a.tolerance;
   options.maxIterations = a.maxIterations;
   options.timeLimitSeconds = a.timeLimit;
+  options.recordHistory = a.history;
   if (auto bad = solvers::validateOptions(options)) throw CommandError("bad option: " + *bad);
   Eigen::VectorXd bestR;
   double bestResidual = std::numeric_limits<double>::infinity();
@@ -127,6 +135,14 @@ void runSolve(const SolveArgs& a) {
               << ",\"iterations\":" << r.iterations << ",\"seconds\":" << jsonNumber(r.seconds)
               << ",\"residual\":" << jsonNumber(r.residual) << planFields;
     if (!r.message.empty()) std::cout << ",\"note\":" << jsonString(r.message);  // as run --stats
+    if (a.history) {
+      std::cout << ",\"history\":[";
+      for (std::size_t k = 0; k < r.history.size(); ++k)
+        std::cout << (k ? "," : "") << "[" << r.history[k].iteration << ","
+                  << jsonNumber(r.history[k].seconds) << "," << jsonNumber(r.history[k].residual)
+                  << "]";
+      std::cout << "]";
+    }
     std::cout << "}" << std::endl;
     if (r.status == solvers::SolverStatus::InvalidProblem)
       throw CommandError(a.file + ": invalid problem: " + r.message);
@@ -182,6 +198,11 @@ void registerSolverCommands(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   solve->add_option("--solution", args->solutionPath,
                     "write r (3 numbers per contact) of the solver with the smallest residual");
+  solve->add_option("--start", args->startPath,
+                    "start every solver from this r (3 numbers per contact; `coulomb run "
+                    "--capture` writes the step's warm start as <problem>.start)");
+  solve->add_flag("--history", args->history,
+                  "add each solver's [iteration, seconds, residual] after every iteration");
   solve->callback([args] { runSolve(*args); });
 }
 

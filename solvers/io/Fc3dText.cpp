@@ -178,6 +178,35 @@ void writeVector(const Eigen::VectorXd& v, std::ostream& out, int perLine) {
     out << shortest(v[i]) << ((i + 1) % perLine == 0 || i + 1 == v.size() ? "\n" : " ");
 }
 
+std::optional<Eigen::VectorXd> readVector(const std::string& path, Eigen::Index size,
+                                          std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = path + ": cannot open the file (does it exist and is it readable?)";
+    return std::nullopt;
+  }
+  Eigen::VectorXd v(size);
+  Eigen::Index count = 0;
+  std::string token;
+  while (in >> token) {
+    char* end = nullptr;
+    const double value = std::strtod(token.c_str(), &end);
+    if (end != token.c_str() + token.size() || !std::isfinite(value)) {
+      error = path + ": number " + std::to_string(count + 1) + " ('" + token +
+              "') is not a finite number";
+      return std::nullopt;
+    }
+    if (count < size) v[count] = value;
+    ++count;
+  }
+  if (count != size) {
+    error = path + ": " + std::to_string(count) + " numbers, expected " + std::to_string(size) +
+            " (3 per contact)";
+    return std::nullopt;
+  }
+  return v;
+}
+
 std::string writeFc3dText(const ContactProblem& problem, std::ostream& out,
                           const std::string& family) {
   for (const ConstraintBlock& b : problem.blocks)

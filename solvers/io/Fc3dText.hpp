@@ -36,4 +36,9 @@ std::string writeFc3dText(const ContactProblem& problem, std::ostream& out,
 // r as whitespace-separated numbers, one contact (3 numbers) per line, round-trip exact.
 void writeVector(const Eigen::VectorXd& v, std::ostream& out, int perLine = 3);
 
+// The inverse of writeVector: exactly `size` finite numbers, whitespace separated (a captured
+// warm start, `coulomb solve --start`). nullopt with `error` = "FILE: what is wrong" otherwise.
+std::optional<Eigen::VectorXd> readVector(const std::string& path, Eigen::Index size,
+                                          std::string& error);
+
 }  // namespace coulomb::solvers

@@ -250,6 +250,17 @@ TEST_F(CliOutputs, SnapshotContinuationPrintsTheUninterruptedStateHash) {
   EXPECT_EQ(hashOf(resumed.output), hashOf(whole.output)) << resumed.output;
   EXPECT_NE(hashOf(first.output), hashOf(whole.output));
 
+  // A solver given with the snapshot runs the continuation (the snapshot's own was auto).
+  const std::string stats = path("continued.json");
+  const CommandResult pgs = runCoulomb("run box_stack_10 --steps 3 --solver pgs! --stats " + stats +
+                                       " --load-snapshot " + snapshot);
+  ASSERT_EQ(pgs.status, 0) << pgs.output;
+  std::ifstream statsFile(stats);
+  const nlohmann::json summary = nlohmann::json::parse(statsFile);
+  ASSERT_EQ(summary.at("per_step").size(), 3u);
+  for (const auto& step : summary.at("per_step"))
+    for (const auto& island : step.at("islands")) EXPECT_EQ(island.at("solver"), "pgs") << island;
+
   const CommandResult wrongScene =
       runCoulomb("run pyramid_10 --steps 1 --load-snapshot " + snapshot);
   EXPECT_NE(wrongScene.status, 0);
@@ -289,7 +300,12 @@ void expectCaptureReplays(const std::string& scene, const fs::path& dir, double 
   ASSERT_EQ(r.status, 0) << r.output;
   const fs::path file = captureDir / "cli_box_step3_island0.fc3d";
   ASSERT_TRUE(fs::exists(file)) << r.output;
-  EXPECT_EQ(std::distance(fs::directory_iterator(captureDir), fs::directory_iterator{}), 1);
+  // The problem, and beside it the warm start its solve began from (a resting box's last
+  // impulses; none for frictionless contacts, whose padded rows have no start of their size).
+  const fs::path start = captureDir / "cli_box_step3_island0.start";
+  EXPECT_EQ(fs::exists(start), mu > 0.0);
+  EXPECT_EQ(std::distance(fs::directory_iterator(captureDir), fs::directory_iterator{}),
+            mu > 0.0 ? 2 : 1);
   const coulomb::solvers::Fc3dReadResult read = coulomb::solvers::readFc3dText(file.string());
   ASSERT_TRUE(read.problem) << read.error;
   EXPECT_EQ(read.problem->contactCount(), 4);
@@ -297,6 +313,28 @@ void expectCaptureReplays(const std::string& scene, const fs::path& dir, double 
   const CommandResult solve = runCoulomb("solve " + file.string() + " --solver bgs");
   ASSERT_EQ(solve.status, 0) << solve.output;
   EXPECT_NE(solve.output.find("\"status\":\"converged\""), std::string::npos) << solve.output;
+  if (mu == 0.0) return;
+  // Replayed from its warm start with the history of every sweep: the box rests, so the last
+  // step's impulses are nearly the answer and bgs needs fewer sweeps than from r = 0.
+  const CommandResult cold = runCoulomb("solve " + file.string() + " --solver bgs --history");
+  const CommandResult warm =
+      runCoulomb("solve " + file.string() + " --solver bgs --history --start " + start.string());
+  ASSERT_EQ(warm.status, 0) << warm.output;
+  const nlohmann::json coldLine =
+      nlohmann::json::parse(cold.output.substr(0, cold.output.find('\n')));
+  const nlohmann::json warmLine =
+      nlohmann::json::parse(warm.output.substr(0, warm.output.find('\n')));
+  EXPECT_EQ(warmLine.at("status"), "converged") << warm.output;
+  EXPECT_LT(warmLine.at("iterations").get<int>(), coldLine.at("iterations").get<int>());
+  EXPECT_EQ(coldLine.at("history").size(), coldLine.at("iterations").get<std::size_t>());
+  // A start of the wrong size is an error naming the file.
+  const fs::path shortStart = dir / "short.start";
+  std::ofstream(shortStart) << "1 2 3\n";
+  const CommandResult bad =
+      runCoulomb("solve " + file.string() + " --solver bgs --start " + shortStart.string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("short.start: 3 numbers, expected 12"), std::string::npos)
+      << bad.output;
 }
 
 // `coulomb solve` says what a solver did, as `run --stats` does for every attempt: a landing
