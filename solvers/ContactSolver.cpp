@@ -155,9 +155,10 @@ void ContactSolver::run(const ContactProblem& problem, const SolverOptions& opti
     if (candidate) report.note("start ignored (wrong size or not finite)");
     evaluateZero();
   }
-  // The all-sticking start (StickingStart.hpp). Without a warm start for every row (a fresh
-  // stack, a box landing) it is tried before the solver; with one it is a restart, tried only if
-  // a body-space solver has not converged after kStickingRestartSweeps sweeps (ContactSolver.hpp).
+  // The all-sticking start (StickingStart.hpp). Without a warm start (a fresh island: no row
+  // carried an impulse over) it is tried before the solver; with one (rows new this step start at
+  // 0 within it) it is a restart, tried only if a body-space solver has not converged after
+  // kStickingRestartSweeps sweeps (ContactSolver.hpp).
   const BodySpaceDelassus* factors = problem.W.bodySpaceOperator();
   const bool sticking = !start && options.stickingStart && factors != nullptr && !ignoresStart();
   StickingStart& stick = options.stickingWorkspace ? *options.stickingWorkspace : work.sticking;
