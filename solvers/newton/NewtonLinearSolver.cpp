@@ -2,6 +2,7 @@
 
 #include <coulomb/solvers/newton/SmallLu.hpp>
 
+#include <Eigen/KLUSupport>
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -14,6 +15,24 @@ namespace {
 constexpr int kUnblockedLuSize = 16;
 
 }  // namespace
+
+// KLU with its refactorization: new values on the pattern and pivot order of the last
+// factorization, into the same storage (klu_refactor: no pivot search, no allocation). The Newton
+// steps of one solve keep the pattern, and their values change little between steps.
+struct NewtonLinearSolver::SparseFactor : Eigen::KLU<Eigen::SparseMatrix<double>> {
+  bool hasNumeric = false;  // a factorization of the current analysis exists
+  bool refactorize(Eigen::SparseMatrix<double>& J) {
+    if (m_symbolic == nullptr || m_numeric == nullptr) return false;
+    return klu_refactor(J.outerIndexPtr(), J.innerIndexPtr(), J.valuePtr(), m_symbolic, m_numeric,
+                        &m_common) == 1;
+  }
+};
+
+NewtonLinearSolver::NewtonLinearSolver(int denseThreshold, double maxSparseDensity)
+    : denseThreshold_(denseThreshold), maxSparseDensity_(maxSparseDensity) {}
+NewtonLinearSolver::~NewtonLinearSolver() = default;
+NewtonLinearSolver::NewtonLinearSolver(NewtonLinearSolver&&) noexcept = default;
+NewtonLinearSolver& NewtonLinearSolver::operator=(NewtonLinearSolver&&) noexcept = default;
 
 bool NewtonLinearSolver::samePattern(const BlockSparseMatrix& W,
                                      const std::vector<int>& kept) const {
@@ -83,8 +102,9 @@ void NewtonLinearSolver::buildPattern(const BlockSparseMatrix& W, const std::vec
     for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k) patternColumns_[k] = W.blockColumn(k);
   }
   patternKept_ = kept;
-  lu_ = std::make_unique<SparseLu>();
+  if (!lu_) lu_ = std::make_unique<SparseFactor>();
   lu_->analyzePattern(J_);
+  lu_->hasNumeric = false;
   analyzed_ = true;
   ++stats_.patternAnalyses;
 }
@@ -218,14 +238,30 @@ bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vec
     fillSparse(W, offset, jac, index, sigma);
     ++stats_.sparseSolves;
     factored_ = Factored::None;
+    // The kept pivot order first; where it is no longer accurate (a pivot grew small with the
+    // new values: the residual check below), a factorization with a fresh pivot search.
+    const auto solveWith = [&] {
+      x = lu_->solve(rhs);
+      if (lu_->info() != Eigen::Success || !x.allFinite()) return false;
+      check.noalias() = J_ * x;
+      check -= rhs;
+      err = check.norm();
+      return err <= 1e-8 * rhs.norm();
+    };
+    if (lu_->hasNumeric) {
+      if (lu_->refactorize(J_)) {
+        factored_ = Factored::Sparse;
+        if (solveWith()) return true;
+      }
+      ++stats_.refactorFallbacks;
+    }
+    factored_ = Factored::None;
+    lu_->hasNumeric = false;
     lu_->factorize(J_);
     if (lu_->info() != Eigen::Success) return false;
+    lu_->hasNumeric = true;
     factored_ = Factored::Sparse;
-    x = lu_->solve(rhs);
-    if (lu_->info() != Eigen::Success || !x.allFinite()) return false;
-    check.noalias() = J_ * x;
-    check -= rhs;
-    err = check.norm();
+    return solveWith();
   }
   return err <= 1e-8 * rhs.norm();
 }

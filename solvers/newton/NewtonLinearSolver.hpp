@@ -3,12 +3,16 @@
 // rhs with J = A (W + sigma I) + B restricted to the rows R that are not unit rows (the eliminated
 // ones). J_RR has W's block sparsity (a tower is block-tridiagonal in body order), so above
 // `denseThreshold` kept rows, when W is not nearly dense, it is assembled straight into a
-// compressed sparse matrix and factorized by Eigen's supernodal SparseLU with the COLAMD
-// fill-reducing column ordering. The pattern of J_RR depends only on W's block structure and on R:
-// it is built, and SparseLU's symbolic analysis (ordering, elimination tree) is done, once per
-// (structure, R) and reused by every later solve with the same pair (the Newton steps of one solve
-// mostly keep R, the proximal subproblems (5.9) keep W's structure); only the numeric
-// factorization is redone. Reusing the analysis gives bit-identical steps (same ordering).
+// compressed sparse matrix and factorized by a sparse LU (below). The pattern of J_RR depends only
+// on W's block structure and on R: it is built, and the sparse LU's symbolic analysis (ordering,
+// block triangular form) is done, once per (structure, R) and reused by every later solve with the
+// same pair (the Newton steps of one solve mostly keep R, the proximal subproblems (5.9) keep W's
+// structure); only the numeric factorization is redone, on the last one's pivot order while that
+// stays accurate (the solve's residual check), else with a fresh pivot search. The sparse LU is
+// SuiteSparse's KLU (Davis and Palamadai Natarajan 2010: AMD ordering of the diagonal blocks of a
+// block triangular form, left-looking LU with threshold partial pivoting, refactorization): on a
+// 441-contact sphere packing's Newton solve the same iterates as Eigen's supernodal SparseLU in
+// half the time (docs/benchmarks.md "KLU for the sparse Newton step").
 // Measured crossovers (docs/benchmarks.md, "Newton linear solve"): on a tower's pattern the
 // sparse LU wins from ~100 kept rows (4x at 240); on a dense W it is 1.2-1.6x slower than the
 // dense LU at any size, hence the density bound.
@@ -16,9 +20,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
-#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include <memory>
 #include <vector>
@@ -34,6 +36,7 @@ struct NewtonBlockJacobian {
 struct NewtonLinearStats {
   int denseSolves = 0;             // dense partial-pivoting LU solves
   int sparseSolves = 0;            // sparse LU solves (numeric factorizations)
+  int refactorFallbacks = 0;       // refactorizations on the kept pivots that missed the check
   int patternAnalyses = 0;         // sparse patterns built + symbolic analyses (a new R)
   bool lastReusedPattern = false;  // the last sparse solve reused the cached pattern
 };
@@ -42,8 +45,10 @@ class NewtonLinearSolver {
  public:
   // Dense LU when at most `denseThreshold` rows are kept or when W stores more than
   // `maxSparseDensity` n^2 entries; else sparse LU (pattern and analysis cached).
-  explicit NewtonLinearSolver(int denseThreshold, double maxSparseDensity = 0.5)
-      : denseThreshold_(denseThreshold), maxSparseDensity_(maxSparseDensity) {}
+  explicit NewtonLinearSolver(int denseThreshold, double maxSparseDensity = 0.5);
+  ~NewtonLinearSolver();
+  NewtonLinearSolver(NewtonLinearSolver&&) noexcept;
+  NewtonLinearSolver& operator=(NewtonLinearSolver&&) noexcept;
 
   // Solves J_RR x = rhs (rhs and x: |R| entries; x is resized to |R|). `kept` lists the rows of
   // R in increasing order, `index[i]` is the position of row i in `kept` or -1; `offset` the
@@ -85,8 +90,8 @@ class NewtonLinearSolver {
   std::vector<int> patternSizes_, patternRowStart_, patternColumns_, patternKept_;
   std::vector<int> slots_;
   Eigen::SparseMatrix<double> J_;
-  using SparseLu = Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>;
-  std::unique_ptr<SparseLu> lu_;
+  struct SparseFactor;  // the sparse LU and its symbolic analysis (KLU: in the .cpp only)
+  std::unique_ptr<SparseFactor> lu_;
   bool analyzed_ = false;
   // Dense path: J_RR and its LU factors in the leading m x m block of storage sized to the
   // largest m met (Eigen's blocked partial-pivoting LU run in place, with the leading dimension

@@ -262,3 +262,36 @@ TEST(NewtonLinearSolver, NewtonOnATowerAgreesBetweenSparseAndDense) {
   EXPECT_LT((u1 - u2).norm(), 1e-8 * (1 + u1.norm()));
   EXPECT_LT((r1 - r2).norm(), 1e-6 * (1 + r1.norm()));
 }
+
+// New values on the same pattern are factored on the last factorization's pivots (KLU's
+// refactorization); where those pivots no longer serve (here: every one of them is zero), the
+// solve misses its accuracy check and a fresh factorization with a pivot search takes over.
+TEST(NewtonLinearSolver, RefactorsOnTheKeptPivotsAndFactorsAfreshWhenTheyFail) {
+  // Two contacts coupled through every entry: W's pattern is all four 3 x 3 blocks.
+  auto twoContacts = [](const Eigen::MatrixXd& dense) {
+    return DelassusOperator::dense(dense).toBlockSparse(std::vector<int>(2, 3));
+  };
+  Eigen::MatrixXd first = Eigen::MatrixXd::Constant(6, 6, 0.5);
+  first.diagonal().setConstant(4.0);  // diagonally dominant: the pivots are the diagonal
+  Eigen::MatrixXd slightly = first;
+  slightly(0, 1) += 0.1;
+  slightly(4, 4) -= 0.2;
+  Eigen::MatrixXd swapped = Eigen::MatrixXd::Zero(6, 6);  // [0 I; I 0]: zero diagonal
+  swapped.topRightCorner(3, 3).setIdentity();
+  swapped.bottomLeftCorner(3, 3).setIdentity();
+  std::vector<NewtonBlockJacobian> jac(2);
+  for (auto& j : jac) j.A.setIdentity();  // J = A W + B = W on every row
+  const Rows rows = keptRows(jac, 6);
+  ASSERT_EQ(rows.kept.size(), 6u);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(6, -1.0, 2.0);
+  NewtonLinearSolver solver(0, 1.0);  // sparse at any size
+  Eigen::VectorXd x;
+  for (const Eigen::MatrixXd* values : {&first, &slightly, &swapped}) {
+    const BlockSparseMatrix W = twoContacts(*values);
+    ASSERT_TRUE(solver.solve(W, offsets(W), jac, rows.kept, rows.index, 0.0, rhs, x));
+    EXPECT_LT((*values * x - rhs).norm(), 1e-12 * rhs.norm());
+  }
+  EXPECT_EQ(solver.stats().patternAnalyses, 1);
+  EXPECT_EQ(solver.stats().sparseSolves, 3);
+  EXPECT_EQ(solver.stats().refactorFallbacks, 1);  // the swapped matrix only
+}
