@@ -150,16 +150,24 @@ void assembleContactBlocks(const joints::RowSet& rows, AssemblyScratch& scratch,
   const std::vector<AssemblyTouch>& touches = scratch.touches;
   const std::vector<int>&groupOfSide = scratch.groupOfSide, &groupStart = scratch.groupStart;
   std::vector<int>&rowStart = scratch.rowStart, &columns = scratch.blockColumns;
-  // The pattern: row k's columns are the blocks on k's bodies, ascending, once each.
+  // The pattern: row k's columns are the blocks on k's bodies, ascending, once each: a merge of
+  // its (at most two) groups, each already in block order (a block on one body twice is there
+  // twice, next to itself).
   rowStart.assign(1, 0);
   columns.clear();
   for (int k = 0; k < blockCount; ++k) {
-    const auto first = static_cast<std::ptrdiff_t>(columns.size());
-    for (int side = 0; side < 2; ++side)
-      if (const int g = groupOfSide[2 * k + side]; g >= 0)
-        for (int t = groupStart[g]; t < groupStart[g + 1]; ++t) columns.push_back(touches[t].block);
-    std::sort(columns.begin() + first, columns.end());
-    columns.erase(std::unique(columns.begin() + first, columns.end()), columns.end());
+    const std::size_t first = columns.size();
+    int g0 = groupOfSide[2 * k], g1 = groupOfSide[2 * k + 1];
+    if (g1 == g0) g1 = -1;          // one body on both sides: its group once
+    if (g0 < 0) std::swap(g0, g1);  // g0 is a group whenever k has one
+    int t0 = g0 >= 0 ? groupStart[g0] : 0, t1 = g1 >= 0 ? groupStart[g1] : 0;
+    const int end0 = g0 >= 0 ? groupStart[g0 + 1] : 0, end1 = g1 >= 0 ? groupStart[g1 + 1] : 0;
+    while (t0 < end0 || t1 < end1) {
+      const int j = t1 >= end1 || (t0 < end0 && touches[t0].block <= touches[t1].block)
+                        ? touches[t0++].block
+                        : touches[t1++].block;
+      if (columns.size() == first || columns.back() != j) columns.push_back(j);
+    }
     rowStart.push_back(static_cast<int>(columns.size()));
   }
   std::vector<double>& values = scratch.values;
