@@ -137,6 +137,25 @@ class SparseRowsBuilder {
   std::vector<double>& values_;
 };
 
+// Appends the blocks on block k's bodies, ascending, once each: a merge of its (at most two) body
+// groups, each already in block order (a block on one body twice is there twice, side by side).
+inline void appendBodyColumns(int k, const AssemblyScratch& scratch, std::vector<int>& columns) {
+  const std::vector<AssemblyTouch>& touches = scratch.touches;
+  const std::vector<int>&groupOfSide = scratch.groupOfSide, &groupStart = scratch.groupStart;
+  const std::size_t first = columns.size();
+  int g0 = groupOfSide[2 * k], g1 = groupOfSide[2 * k + 1];
+  if (g1 == g0) g1 = -1;          // one body on both sides: its group once
+  if (g0 < 0) std::swap(g0, g1);  // g0 is a group whenever k has one
+  int t0 = g0 >= 0 ? groupStart[g0] : 0, t1 = g1 >= 0 ? groupStart[g1] : 0;
+  const int end0 = g0 >= 0 ? groupStart[g0 + 1] : 0, end1 = g1 >= 0 ? groupStart[g1 + 1] : 0;
+  while (t0 < end0 || t1 < end1) {
+    const int j = t1 >= end1 || (t0 < end0 && touches[t0].block <= touches[t1].block)
+                      ? touches[t0++].block
+                      : touches[t1++].block;
+    if (columns.size() == first || columns.back() != j) columns.push_back(j);
+  }
+}
+
 // W of an island of contact blocks only (the common small island): its 3 x 3 blocks straight
 // into block-CSR, each pair (k, j) computed once and mirrored (W_jk = W_kj^T, and the diagonal
 // blocks' upper triangles, so W is exactly symmetric). The block pattern is symmetric: j is in row
@@ -147,19 +166,13 @@ void assembleContactBlocks(const joints::RowSet& rows, AssemblyScratch& scratch,
   using MJ3 = Eigen::Matrix<double, 6, 3>;
   using Block3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
   const auto blockCount = static_cast<int>(rows.blocks.size());
-  const std::vector<AssemblyTouch>& touches = scratch.touches;
-  const std::vector<int>&groupOfSide = scratch.groupOfSide, &groupStart = scratch.groupStart;
+  const std::vector<int>& groupOfSide = scratch.groupOfSide;
   std::vector<int>&rowStart = scratch.rowStart, &columns = scratch.blockColumns;
   // The pattern: row k's columns are the blocks on k's bodies, ascending, once each.
   rowStart.assign(1, 0);
   columns.clear();
   for (int k = 0; k < blockCount; ++k) {
-    const auto first = static_cast<std::ptrdiff_t>(columns.size());
-    for (int side = 0; side < 2; ++side)
-      if (const int g = groupOfSide[2 * k + side]; g >= 0)
-        for (int t = groupStart[g]; t < groupStart[g + 1]; ++t) columns.push_back(touches[t].block);
-    std::sort(columns.begin() + first, columns.end());
-    columns.erase(std::unique(columns.begin() + first, columns.end()), columns.end());
+    appendBodyColumns(k, scratch, columns);
     rowStart.push_back(static_cast<int>(columns.size()));
   }
   std::vector<double>& values = scratch.values;
@@ -397,14 +410,13 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
       std::swap(sidesOfGroup[0], sidesOfGroup[1]);
     }
     columns.clear();
-    for (int g = 0; g < 2; ++g)
-      if (groups[g] >= 0)
-        for (int t = groupStart[groups[g]]; t < groupStart[groups[g] + 1]; ++t)
-          columns.push_back(touches[t].block);
+    appendBodyColumns(k, scratch, columns);
     const auto treeBegin = tree;
     for (; tree != treeBlocks.end() && tree->row == k; ++tree) columns.push_back(tree->col);
-    std::sort(columns.begin(), columns.end());
-    columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+    if (tree != treeBegin) {  // the trees' columns among the bodies' ones
+      std::sort(columns.begin(), columns.end());
+      columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+    }
 
     strip.resize(columns.size());
     for (std::size_t c = 0; c < columns.size(); ++c) {

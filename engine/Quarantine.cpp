@@ -31,7 +31,17 @@ std::optional<std::string> Quarantine::check(std::size_t i, const geometry::Body
   const geometry::Pose& pose = state.poses[i];
   const Eigen::Vector3d& v = state.linearVelocities[i];
   const Eigen::Vector3d& w = state.angularVelocities[i];
-  // Nothing to report (every body, twice a step): no stream built.
+  // Nothing to report (every body, twice a step): no stream built. First without square roots:
+  // a squared norm finite and below max^2 (1 - 1e-9) has its norm, correctly rounded, within max
+  // (and a finite squared norm has finite entries); near a limit or not finite, the exact test.
+  auto clearlyWithin = [](double squared, double max) {
+    return max >= 0.0 && squared < max * max * (1.0 - 1e-9);
+  };
+  if (std::isfinite(pose.rotation.coeffs().squaredNorm()) &&
+      clearlyWithin(pose.position.squaredNorm(), limits.maxPosition) &&
+      clearlyWithin(v.squaredNorm(), limits.maxLinearSpeed) &&
+      clearlyWithin(w.squaredNorm(), limits.maxAngularSpeed))
+    return std::nullopt;
   if (pose.allFinite() && v.allFinite() && w.allFinite() &&
       !(pose.position.norm() > limits.maxPosition) && !(v.norm() > limits.maxLinearSpeed) &&
       !(w.norm() > limits.maxAngularSpeed))

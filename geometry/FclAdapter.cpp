@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -120,6 +121,15 @@ fcl::AABBd tightAabb(const Shape& shape, TreeObject& object) {
   return fcl::AABBd(tf.translation() - half, tf.translation() + half);
 }
 
+// Bitwise equality (not ==: -0.0 and 0.0 may give different signs of zero downstream).
+bool sameBits(const double* a, const double* b, std::size_t count) {
+  return std::memcmp(a, b, count * sizeof(double)) == 0;
+}
+bool sameBits(const Pose& a, const Pose& b) {
+  return sameBits(a.rotation.coeffs().data(), b.rotation.coeffs().data(), 4) &&
+         sameBits(a.position.data(), b.position.data(), 3);
+}
+
 bool finite(const fcl::Contactd& c) {
   return c.normal.allFinite() && c.pos.allFinite() && std::isfinite(c.penetration_depth);
 }
@@ -135,6 +145,10 @@ struct FclEntry {
   bool isPlane = false;
   bool isMesh = false;
   MeshSurface surface;  // a mesh's edges and patches (MeshEdges.hpp)
+  // What the transform and boxes were last placed for (FclScene::setPose).
+  bool placed = false;
+  Pose placedPose;
+  double placedSweep = 0.0;
 
   void build(const std::shared_ptr<const Shape>& newShape, const std::string& who) {
     if (!newShape) throw std::invalid_argument(who + ": has no shape");
@@ -300,8 +314,17 @@ void FclScene::setPose(ColliderId id, const Pose& worldPose, double sweep) {
   if (!worldPose.allFinite())
     throw std::invalid_argument(name(id) + ": world pose is not finite (NaN or inf)");
   Impl::Entry& entry = impl_->at(id);
+  const double grow = std::isfinite(sweep) ? std::max(0.0, sweep) : 0.0;
+  // The pose and sweep of the last call, to the bit (the static ground, a body at rest): the
+  // transform and boxes would come out the same (place is idempotent), so they are kept.
+  if (entry.placed && sameBits(entry.placedPose, worldPose) &&
+      sameBits(&entry.placedSweep, &grow, 1))
+    return;
   entry.setTransform(worldPose);
-  impl_->place(entry, std::isfinite(sweep) ? std::max(0.0, sweep) : 0.0);
+  impl_->place(entry, grow);
+  entry.placed = true;
+  entry.placedPose = worldPose;
+  entry.placedSweep = grow;
 }
 
 void FclScene::updateTree() {

@@ -81,6 +81,13 @@ std::string where(const std::vector<ConstraintBlock>& blocks, int row) {
   return s.str();
 }
 
+// Whether all `count` values are finite: x * 0 is 0 for finite x and NaN otherwise, so their sum
+// is 0 exactly when all are; in any order, so Eigen sums them in packets (no chain of dependent
+// adds). The search for the first bad entry is the caller's, only when one is bad.
+bool allFinite(const double* v, std::size_t count) {
+  return (Eigen::Map<const Eigen::ArrayXd>(v, static_cast<Eigen::Index>(count)) * 0.0).sum() == 0.0;
+}
+
 }  // namespace
 
 std::optional<std::string> ContactProblem::validate() const {
@@ -132,17 +139,11 @@ std::optional<std::string> ContactProblem::validate() const {
       }
     }
   }
-  // One branch-free pass each (x * 0 is 0 for finite x, NaN otherwise); the search for the
-  // first bad entry only when there is one.
-  auto allFinite = [n](const Eigen::VectorXd& v) {
-    double s = 0.0;
-    for (int i = 0; i < n; ++i) s += v[i] * 0.0;
-    return s == 0.0;
-  };
-  if (!allFinite(q))
+  // One branch-free pass each; the search for the first bad entry only when there is one.
+  if (!allFinite(q.data(), static_cast<std::size_t>(n)))
     for (int i = 0; i < n; ++i)
       if (!std::isfinite(q[i])) return "q at " + where(blocks, i) + " is not finite";
-  if (warmStart && !allFinite(*warmStart))
+  if (warmStart && !allFinite(warmStart->data(), static_cast<std::size_t>(n)))
     for (int i = 0; i < n; ++i)
       if (!std::isfinite((*warmStart)[i]))
         return "warm start at " + where(blocks, i) + " is not finite";
@@ -178,9 +179,8 @@ std::optional<std::string> ContactProblem::validate() const {
         }
     if (auto e = diagonalOk([d](int i) { return (*d)(i, i); })) return e;
   } else if (const BlockSparseMatrix* s = W.blockSparseMatrix()) {
-    double probe = 0.0;  // one branch-free pass over the stored values; the search only if bad
-    for (const double v : s->values()) probe += v * 0.0;
-    if (probe != 0.0)
+    // One branch-free pass over the stored values; the search only if bad.
+    if (!allFinite(s->values().data(), s->values().size()))
       for (int b = 0; b < s->blockCount(); ++b)
         for (int k = s->rowBegin(b); k < s->rowEnd(b); ++k) {
           const int c = s->blockColumn(k), sb = s->blockSize(b), sc = s->blockSize(c);

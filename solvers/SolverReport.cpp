@@ -27,21 +27,25 @@ void SolverReport::note(std::string_view text) {
 }
 
 void SolverReport::reset() {
-  std::string keptSolver = std::move(solver), keptName = std::move(nativeResidualName),
-              keptMessage = std::move(message);
-  std::vector<IterationRecord> keptHistory = std::move(history);
-  *this = SolverReport{};
-  keptSolver.clear();
-  keptName.clear();
-  keptMessage.clear();
-  keptHistory.clear();
-  solver = std::move(keptSolver);
-  nativeResidualName = std::move(keptName);
+  // Field by field (a new field is reset here too): the strings and the history keep their
+  // storage, so a steady solve allocates nothing; the numbers take a default report's values.
+  const SolverReport fresh{};
+  status = fresh.status;
+  iterations = fresh.iterations;
+  seconds = fresh.seconds;
+  residual = fresh.residual;
+  absoluteResidual = fresh.absoluteResidual;
+  nativeResidual = fresh.nativeResidual;
+  timeLimitReached = fresh.timeLimitReached;
+  lineSearchFailures = fresh.lineSearchFailures;
+  maxRegularization = fresh.maxRegularization;
+  solver.clear();
+  nativeResidualName.clear();
+  message.clear();
+  history.clear();
   // Solvers name their measure with literals of under 64 characters: with this capacity a reused
   // report takes any of them without allocating, whichever solver wrote it last.
   nativeResidualName.reserve(64);
-  message = std::move(keptMessage);
-  history = std::move(keptHistory);
 }
 
 }  // namespace coulomb::solvers

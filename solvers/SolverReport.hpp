@@ -44,7 +44,8 @@ struct SolverReport {
   std::string message;                   // human-readable notes, "; "-separated
 
   void note(std::string_view text);  // appends to message (a literal makes no temporary string)
-  // Back to a fresh report, keeping the strings' and the history's storage (solvers reuse one).
+  // Back to a fresh report, keeping the strings' and the history's storage (solvers reuse one);
+  // SolverReport.cpp resets field by field: a new field goes there too.
   void reset();
   [[nodiscard]] bool converged() const { return status == SolverStatus::Converged; }
 };
