@@ -62,14 +62,21 @@ class Tokens {
   }
 
   double number(const std::string& what) {
+    double v = 0.0;
+    if (!nextNumber(what, v)) failAtEnd("expected " + what);
+    return v;
+  }
+
+  // The next token as a finite number into `v`; false at the end of the input.
+  bool nextNumber(const std::string& what, double& v) {
     std::string tok;
-    if (!next(tok)) failAtEnd("expected " + what);
+    if (!next(tok)) return false;
     char* end = nullptr;
-    const double v = std::strtod(tok.c_str(), &end);
+    v = std::strtod(tok.c_str(), &end);
     if (end != tok.c_str() + tok.size() || tok.empty())
       fail("expected " + what + " (a number), found '" + tok + "'");
     if (!std::isfinite(v)) fail(what + " is '" + tok + "': must be finite");
-    return v;
+    return true;
   }
 
   long integer(const std::string& what, long lo, long hi) {
@@ -187,17 +194,16 @@ std::optional<Eigen::VectorXd> readVector(const std::string& path, Eigen::Index 
   }
   Eigen::VectorXd v(size);
   Eigen::Index count = 0;
-  std::string token;
-  while (in >> token) {
-    char* end = nullptr;
-    const double value = std::strtod(token.c_str(), &end);
-    if (end != token.c_str() + token.size() || !std::isfinite(value)) {
-      error = path + ": number " + std::to_string(count + 1) + " ('" + token +
-              "') is not a finite number";
-      return std::nullopt;
+  try {
+    Tokens t(in, path);
+    double value = 0.0;
+    while (t.nextNumber("number " + std::to_string(count + 1), value)) {
+      if (count < size) v[count] = value;
+      ++count;
     }
-    if (count < size) v[count] = value;
-    ++count;
+  } catch (const std::runtime_error& e) {  // FILE:LINE: what is wrong
+    error = e.what();
+    return std::nullopt;
   }
   if (count != size) {
     error = path + ": " + std::to_string(count) + " numbers, expected " + std::to_string(size) +

@@ -20,7 +20,9 @@ constexpr int kUnblockedLuSize = 16;
 // factorization, into the same storage (klu_refactor: no pivot search, no allocation). The Newton
 // steps of one solve keep the pattern, and their values change little between steps.
 struct NewtonLinearSolver::SparseFactor : Eigen::KLU<Eigen::SparseMatrix<double>> {
-  bool hasNumeric = false;  // a factorization of the current analysis exists
+  // A factorization of the current analysis exists (analyzePattern frees the last one, a failed
+  // factorize leaves none).
+  [[nodiscard]] bool hasNumeric() const { return m_numeric != nullptr; }
   bool refactorize(Eigen::SparseMatrix<double>& J) {
     if (m_symbolic == nullptr || m_numeric == nullptr) return false;
     return klu_refactor(J.outerIndexPtr(), J.innerIndexPtr(), J.valuePtr(), m_symbolic, m_numeric,
@@ -104,7 +106,6 @@ void NewtonLinearSolver::buildPattern(const BlockSparseMatrix& W, const std::vec
   patternKept_ = kept;
   if (!lu_) lu_ = std::make_unique<SparseFactor>();
   lu_->analyzePattern(J_);
-  lu_->hasNumeric = false;
   analyzed_ = true;
   ++stats_.patternAnalyses;
 }
@@ -248,7 +249,7 @@ bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vec
       err = check.norm();
       return err <= 1e-8 * rhs.norm();
     };
-    if (lu_->hasNumeric) {
+    if (lu_->hasNumeric()) {
       if (lu_->refactorize(J_)) {
         factored_ = Factored::Sparse;
         if (solveWith()) return true;
@@ -256,10 +257,8 @@ bool NewtonLinearSolver::solveLeading(const BlockSparseMatrix& W, const std::vec
       ++stats_.refactorFallbacks;
     }
     factored_ = Factored::None;
-    lu_->hasNumeric = false;
     lu_->factorize(J_);
     if (lu_->info() != Eigen::Success) return false;
-    lu_->hasNumeric = true;
     factored_ = Factored::Sparse;
     return solveWith();
   }
