@@ -5,11 +5,13 @@
 // nothing set aside elsewhere; World keeps one StepData and reuses it, so its vectors keep their
 // capacity from step to step.
 #include <coulomb/engine/IslandBuilder.hpp>
+#include <coulomb/engine/JointLoops.hpp>
 #include <coulomb/engine/PenetrationCorrection.hpp>
 #include <coulomb/engine/ProblemAssembler.hpp>
 #include <coulomb/engine/RowSource.hpp>
 #include <coulomb/geometry/Pose.hpp>
 #include <coulomb/joints/RowSet.hpp>
+#include <coulomb/solvers/RedundantRows.hpp>
 #include <coulomb/solvers/SolvePlan.hpp>
 #include <coulomb/solvers/SolveWithFallback.hpp>
 
@@ -39,6 +41,11 @@ struct IslandWork {
   // resizes none of them, and islands never share a solver (independent solves).
   solvers::SolverInstances solvers;
   std::vector<int> groupScratch;  // solvers::splitsByActingContacts's union-find, kept for storage
+  // Redundant joint rows (a loop's): the demand removed along them this step, and the storage
+  // of the search (engine/JointLoops.hpp, solvers/RedundantRows.hpp).
+  solvers::RedundantDemand redundant;
+  solvers::RedundantRowsWorkspace redundantRows;
+  JointLoopScratch loopScratch;
   std::optional<solvers::SolverReport> penetration;  // the split impulse's pseudo-solve
   bool penetrates = false;  // a contact beyond the slop: the split impulse has work this step
   // An island of ideal joints that keeps its exact energy, with nothing else acting: its bodies

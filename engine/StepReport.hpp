@@ -20,7 +20,11 @@ struct IslandReport {
   std::size_t contacts = 0;  // contact points (row blocks)
   int unknowns = 0;          // scalar unknowns of its problem
   int degreesOfFreedom = 0;  // m of nu = 3n/m
-  solvers::SolvePlan plan;   // the attempts run for it, the chooser's rule and features
+  // Dependent combinations of the island's joint rows (a kinematic loop's redundant rows) and the
+  // velocity demand removed along them [m/s, rad/s] (docs/solver-derivations.md (10.3)).
+  int redundantJointRows = 0;
+  double redundantDemandRemoved = 0.0;
+  solvers::SolvePlan plan;  // the attempts run for it, the chooser's rule and features
   // Converged when the applied answer is within the policy's tolerance (solveWithFallback);
   // else the status of the attempt whose answer was applied.
   solvers::SolverStatus status = solvers::SolverStatus::NotApplicable;

@@ -226,6 +226,12 @@ void World::solveIsland(IslandWork& island) {
   ProblemAssembler(settings_.assembly)
       .assemble(island.rows, state_, &articulations_, step_.inverseInertias(), island.assembled,
                 &arrival);
+  // A loop's redundant joint rows: the demand along their dependent combinations is dropped
+  // (docs/solver-derivations.md (10.3)); trees and islands without joints skip the search.
+  island.redundant = {};
+  if (equalityRowsCloseALoop(island.rows, step_.dynamicMask, articulations_, island.loopScratch))
+    island.redundant =
+        solvers::removeRedundantDemands(island.assembled.problem, island.redundantRows);
   const solvers::ContactProblem& problem = island.assembled.problem;
   const solvers::SolverChoice& choice = choiceOf(island);
   island.automaticPlan = choice.isAutomatic();
@@ -384,6 +390,8 @@ void World::fillIslandReport(const IslandWork& island, IslandReport& report) con
   report.contacts = island.blocks[kContactRows].count;
   report.unknowns = island.assembled.problem.size();
   report.degreesOfFreedom = island.assembled.degreesOfFreedom;
+  report.redundantJointRows = island.redundant.combinations;
+  report.redundantDemandRemoved = island.redundant.removed;
   report.plan = island.plan;
   report.status = island.outcome.status;
   report.solve = island.outcome.best.report;

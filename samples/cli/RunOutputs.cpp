@@ -30,20 +30,25 @@ nlohmann::json attemptJson(const solvers::SolverReport& r) {
 nlohmann::json islandJson(const engine::IslandReport& island) {
   nlohmann::json attempts = nlohmann::json::array();
   for (const solvers::SolverReport& a : island.attempts) attempts.push_back(attemptJson(a));
-  return {{"island", island.island},
-          {"bodies", island.bodies},
-          {"contacts", island.contacts},
-          {"unknowns", island.unknowns},
-          {"degrees_of_freedom", island.degreesOfFreedom},
-          {"solver", island.solve.solver},
-          {"reason", island.reason()},
-          {"status", solvers::statusName(island.status)},
-          {"iterations", island.solve.iterations},
-          {"seconds", island.solve.seconds},
-          {"residual", finiteOrNull(island.solve.residual)},
-          {"fallbacks", island.attempts.empty() ? 0 : island.attempts.size() - 1},
-          {"penetration_seconds", island.penetrationSeconds},
-          {"attempts", attempts}};
+  nlohmann::json out = {{"island", island.island},
+                        {"bodies", island.bodies},
+                        {"contacts", island.contacts},
+                        {"unknowns", island.unknowns},
+                        {"degrees_of_freedom", island.degreesOfFreedom},
+                        {"solver", island.solve.solver},
+                        {"reason", island.reason()},
+                        {"status", solvers::statusName(island.status)},
+                        {"iterations", island.solve.iterations},
+                        {"seconds", island.solve.seconds},
+                        {"residual", finiteOrNull(island.solve.residual)},
+                        {"fallbacks", island.attempts.empty() ? 0 : island.attempts.size() - 1},
+                        {"penetration_seconds", island.penetrationSeconds},
+                        {"attempts", attempts}};
+  if (island.redundantJointRows > 0) {  // a kinematic loop's dependent joint rows (reliability.md)
+    out["redundant_joint_rows"] = island.redundantJointRows;
+    out["redundant_demand_removed"] = island.redundantDemandRemoved;
+  }
+  return out;
 }
 
 nlohmann::json tallyJson(const SolverTally& t, std::uint64_t steps) {

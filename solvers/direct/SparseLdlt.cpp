@@ -74,6 +74,16 @@ bool SparseLdlt::analyzed(int n, const std::vector<int>& rows, const std::vector
 }
 
 bool SparseLdlt::factorize(const std::vector<double>& values) {
+  return factorizeWith(values, 0.0, nullptr);
+}
+
+bool SparseLdlt::factorizeRevealing(const std::vector<double>& values, double pivotFloor,
+                                    std::vector<int>& dependent) {
+  return factorizeWith(values, pivotFloor, &dependent);
+}
+
+bool SparseLdlt::factorizeWith(const std::vector<double>& values, double pivotFloor,
+                               std::vector<int>* dependent) {
   if (values.size() != slotOf_.size())
     throw std::invalid_argument("SparseLdlt::factorize: values do not match the pattern");
   std::fill(ax_.begin(), ax_.end(), 0.0);
@@ -109,9 +119,30 @@ bool SparseLdlt::factorize(const std::vector<double>& values) {
       lx_[end] = lki;
       ++lnz_[i];
     }
+    if (dependent != nullptr) {
+      if (!std::isfinite(d_[k])) return false;
+      // A Schur complement this small: the row is a combination of the rows before it, up to
+      // round-off and drift (docs/solver-derivations.md (10.3)).
+      if (d_[k] <= pivotFloor) {
+        dependent->push_back(k);
+        d_[k] = pivotFloor;
+      }
+      continue;
+    }
     if (d_[k] == 0.0 || !std::isfinite(d_[k])) return false;
   }
   return true;
+}
+
+void SparseLdlt::nullVector(int k, Eigen::VectorXd& n) {
+  if (k < 0 || k >= n_) throw std::invalid_argument("SparseLdlt::nullVector: bad row");
+  // L^T x = e_k by back substitution: x_j = 0 beyond k, and columns j < k of L only.
+  work_.setZero();
+  work_[k] = 1.0;
+  for (int j = k - 1; j >= 0; --j)
+    for (int p = lp_[j]; p < lp_[j + 1]; ++p) work_[j] -= lx_[p] * work_[li_[p]];
+  n.resize(n_);
+  for (int i = 0; i < n_; ++i) n[i] = work_[perm_[i]];
 }
 
 void SparseLdlt::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

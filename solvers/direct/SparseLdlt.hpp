@@ -27,6 +27,16 @@ class SparseLdlt {
   /// Numeric factorization with the values of the analyzed entries, in their order. False (and
   /// the factorization unusable) when a pivot is exactly zero or not finite.
   bool factorize(const std::vector<double>& values);
+  /// The same, revealing dependent rows (a loop's redundant joint rows): a pivot at or below
+  /// `pivotFloor` marks its row (the ordered index is appended to `dependent`) and is replaced by
+  /// the floor, so that the factors are those of A + D_f, D_f diagonal with entries of at most
+  /// the floor on the dependent rows: solve() is then one step of inverse iteration towards A's
+  /// near-null space (docs/solver-derivations.md (10.3)). False only for a non-finite pivot.
+  bool factorizeRevealing(const std::vector<double>& values, double pivotFloor,
+                          std::vector<int>& dependent);
+  /// For a dependent row k (ordered index, from factorizeRevealing): n = P^T L^-T e_k in the
+  /// original order, a vector with A n = d_k L e_k, i.e. of the (near) null space of A.
+  void nullVector(int k, Eigen::VectorXd& n);
   /// x = A^-1 b with the last successful factorization (x may alias b).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
@@ -34,6 +44,8 @@ class SparseLdlt {
   [[nodiscard]] int factorNonZeros() const { return lp_.empty() ? 0 : lp_.back(); }
 
  private:
+  bool factorizeWith(const std::vector<double>& values, double pivotFloor,
+                     std::vector<int>* dependent);
   int n_ = -1;
   std::vector<int> rows_, cols_;  // the analyzed pattern, as given
   std::vector<int> perm_;         // perm_[original] = position in the ordered matrix

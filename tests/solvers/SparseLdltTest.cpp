@@ -122,5 +122,60 @@ TEST(SparseLdlt, ZeroPivotIsReported) {
   EXPECT_THROW(ldlt.analyze(2, {0}, {1}), std::invalid_argument);  // upper-triangle entry
 }
 
+// A = B B' of rank 3 on 6 rows (a loop's joint rows: three are combinations of the others): the
+// revealing factorization marks three rows, each null vector n has A n ~ 0, and solve() with the
+// floored pivots amplifies A's null space (one step of inverse iteration).
+TEST(SparseLdlt, RevealingFactorizationFindsDependentRowsAndTheirNullVectors) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd B(6, 3);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 3; ++j) B(i, j) = u(rng);
+  const Eigen::MatrixXd A = B * B.transpose();
+  std::vector<int> rows, cols;
+  std::vector<double> values;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j <= i; ++j) {
+      rows.push_back(i);
+      cols.push_back(j);
+      values.push_back(A(i, j));
+    }
+  SparseLdlt ldlt;
+  ldlt.analyze(6, rows, cols);
+  const double floor = 1e-8 * A.diagonal().maxCoeff();
+  std::vector<int> dependent;
+  ASSERT_TRUE(ldlt.factorizeRevealing(values, floor, dependent));
+  ASSERT_EQ(dependent.size(), 3U);
+  Eigen::VectorXd n;
+  for (const int k : dependent) {
+    ldlt.nullVector(k, n);
+    EXPECT_GE(n.norm(), 1.0);  // a unit entry at row k
+    EXPECT_LT((A * n).norm(), 1e-12 * A.norm() * n.norm()) << "row " << k;
+  }
+  // The plain factorization of the same values reports the zero (or round-off) pivots as unusable
+  // or leaves them to the caller; the revealing one never fails on them.
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(6);
+  Eigen::VectorXd x;
+  ldlt.solve(b, x);
+  ASSERT_TRUE(x.allFinite());
+  // Its direction is almost entirely in A's null space (x' A x / x' x at the floor's scale).
+  EXPECT_LT(x.dot(A * x) / x.squaredNorm(), 10 * floor);
+}
+
+// Full rank: nothing is marked and the answer is the plain factorization's, to the bit.
+TEST(SparseLdlt, RevealingFactorizationOfAFullRankMatrixIsThePlainOne) {
+  SparseLdlt plain, revealing;
+  plain.analyze(2, {0, 1, 1}, {0, 0, 1});
+  revealing.analyze(2, {0, 1, 1}, {0, 0, 1});
+  ASSERT_TRUE(plain.factorize({4.0, 1.0, 3.0}));
+  std::vector<int> dependent;
+  ASSERT_TRUE(revealing.factorizeRevealing({4.0, 1.0, 3.0}, 1e-8 * 4.0, dependent));
+  EXPECT_TRUE(dependent.empty());
+  Eigen::VectorXd x, y;
+  plain.solve(Eigen::Vector2d(5.0, 4.0), x);
+  revealing.solve(Eigen::Vector2d(5.0, 4.0), y);
+  EXPECT_EQ(x, y);
+}
+
 }  // namespace
 }  // namespace coulomb::solvers
