@@ -44,7 +44,7 @@ nlohmann::json islandJson(const engine::IslandReport& island) {
                         {"fallbacks", island.attempts.empty() ? 0 : island.attempts.size() - 1},
                         {"penetration_seconds", island.penetrationSeconds},
                         {"attempts", attempts}};
-  if (island.redundantJointRows > 0) {  // a kinematic loop's dependent joint rows (reliability.md)
+  if (island.redundantJointRows > 0) {  // a loop's dependent joint rows (docs/solvers.md)
     out["redundant_joint_rows"] = island.redundantJointRows;
     out["redundant_demand_removed"] = island.redundantDemandRemoved;
   }
