@@ -104,7 +104,8 @@ RedundantDemand removeRedundantDemands(ContactProblem& problem, RedundantRowsWor
     }
   work.demand.resize(m);
   for (int a = 0; a < m; ++a) work.demand[a] = problem.q[work.rowOfEquality[a]];
-  work.vector.noalias() = work.nullVectors * (work.nullVectors.transpose() * work.demand);
+  work.along.noalias() = work.nullVectors.transpose() * work.demand;  // no temporaries: a
+  work.vector.noalias() = work.nullVectors * work.along;              // steady step allocates none
   if (!work.vector.allFinite()) return result;
   for (int a = 0; a < m; ++a) problem.q[work.rowOfEquality[a]] -= work.vector[a];
   result.combinations = p;
