@@ -50,6 +50,37 @@ bool equalityEntries(const ContactProblem& problem, RedundantRowsWorkspace& work
   return true;
 }
 
+// Columns [first, last) of N made orthonormal and orthogonal to the columns before them
+// (modified Gram-Schmidt, twice); false when one has no length left.
+bool orthonormalize(Eigen::MatrixXd& N, int first, int last) {
+  for (int pass = 0; pass < 2; ++pass)
+    for (int k = first; k < last; ++k) {
+      for (int j = 0; j < k; ++j) N.col(k) -= N.col(j).dot(N.col(k)) * N.col(j);
+      const double length = N.col(k).norm();
+      if (!(length > 0.0) || !std::isfinite(length)) return false;
+      N.col(k) /= length;
+    }
+  return true;
+}
+
+// demand -= N N' demand over the first p columns (no temporaries: a steady step allocates none).
+void project(RedundantRowsWorkspace& work, int p) {
+  const auto N = work.nullVectors.leftCols(p);
+  work.along.noalias() = N.transpose() * work.demand;
+  work.demand.noalias() -= N * work.along;
+}
+
+// y = W_EE x from the lower-triangle entries.
+void multiplyEntries(const RedundantRowsWorkspace& work, const Eigen::VectorXd& x,
+                     Eigen::VectorXd& y) {
+  y.setZero(x.size());
+  for (std::size_t e = 0; e < work.values.size(); ++e) {
+    const int r = work.rows[e], c = work.cols[e];
+    y[r] += work.values[e] * x[c];
+    if (r != c) y[c] += work.values[e] * x[r];
+  }
+}
+
 }  // namespace
 
 RedundantDemand removeRedundantDemands(ContactProblem& problem, RedundantRowsWorkspace& work) {
@@ -76,8 +107,7 @@ RedundantDemand removeRedundantDemands(ContactProblem& problem, RedundantRowsWor
   if (!(scale > 0.0) || !std::isfinite(scale)) return result;
   const double floor = kDependentPivot * scale;
   work.dependent.clear();
-  if (!work.ldlt.factorizeRevealing(work.values, floor, work.dependent) || work.dependent.empty())
-    return result;
+  if (!work.ldlt.factorizeRevealing(work.values, floor, work.dependent)) return result;
 
   // N: one (near) null vector of W_EE per dependent row. Its Rayleigh quotient is at most the
   // pivot, so its angle to the near-null space is about sqrt(pivot / lambda), lambda the smallest
@@ -85,31 +115,48 @@ RedundantDemand removeRedundantDemands(ContactProblem& problem, RedundantRowsWor
   // range, which is 1e3-1e4 times the demand to remove. One step of inverse iteration with the
   // revealing factors (those of W_EE + D_f, the floor on the dependent pivots) gains about
   // floor / lambda more (docs/solver-derivations.md (10.3)).
-  const auto p = static_cast<int>(work.dependent.size());
-  work.nullVectors.resize(m, p);
+  auto p = static_cast<int>(work.dependent.size());
+  // Storage for p columns and a few more, kept between calls (only the first p are used).
+  if (work.nullVectors.rows() != m || work.nullVectors.cols() < p + 1)
+    work.nullVectors.resize(m, std::min(m, p + 4));
   for (int k = 0; k < p; ++k) {
     work.ldlt.nullVector(work.dependent[k], work.vector);
     work.ldlt.solve(work.vector, work.vector);
     work.nullVectors.col(k) = work.vector;
   }
-  // Orthonormal basis (modified Gram-Schmidt, twice), then q_E -= N N' q_E.
-  for (int pass = 0; pass < 2; ++pass)
-    for (int k = 0; k < p; ++k) {
-      for (int j = 0; j < k; ++j)
-        work.nullVectors.col(k) -=
-            work.nullVectors.col(j).dot(work.nullVectors.col(k)) * work.nullVectors.col(j);
-      const double length = work.nullVectors.col(k).norm();
-      if (!(length > 0.0) || !std::isfinite(length)) return result;
-      work.nullVectors.col(k) /= length;
-    }
+  if (!orthonormalize(work.nullVectors, 0, p)) return result;
   work.demand.resize(m);
   for (int a = 0; a < m; ++a) work.demand[a] = problem.q[work.rowOfEquality[a]];
-  work.along.noalias() = work.nullVectors.transpose() * work.demand;  // no temporaries: a
-  work.vector.noalias() = work.nullVectors * work.along;              // steady step allocates none
-  if (!work.vector.allFinite()) return result;
-  for (int a = 0; a < m; ++a) problem.q[work.rowOfEquality[a]] -= work.vector[a];
+  work.original = work.demand;  // for the total removed
+  project(work, p);
+  // Directions the pivots hide: a pivot bounds its direction's eigenvalue from above only, and
+  // while the rope bridge's boxes land one loop direction has an eigenvalue of 2e-9 of the scale
+  // behind a pivot above the floor. Two steps of inverse iteration from the demand left find the
+  // near-null direction it still has a part along (the only ones that matter); the direction is
+  // taken when its Rayleigh quotient on W_EE is within the floor, then the search repeats.
+  while (p < m) {
+    work.vector = work.demand;
+    for (int step = 0; step < 2; ++step) {
+      work.ldlt.solve(work.vector, work.vector);
+      for (int j = 0; j < p; ++j)
+        work.vector -= work.nullVectors.col(j).dot(work.vector) * work.nullVectors.col(j);
+    }
+    const double length = work.vector.norm();
+    if (!(length > 0.0) || !std::isfinite(length)) break;
+    work.vector /= length;
+    multiplyEntries(work, work.vector, work.product);
+    if (!(work.vector.dot(work.product) <= floor)) break;
+    if (work.nullVectors.cols() < p + 1)
+      work.nullVectors.conservativeResize(m, std::min(m, 2 * p + 2));
+    work.nullVectors.col(p) = work.vector;
+    if (!orthonormalize(work.nullVectors, p, p + 1)) break;
+    ++p;
+    project(work, p);
+  }
+  if (p == 0 || !work.demand.allFinite()) return result;
+  for (int a = 0; a < m; ++a) problem.q[work.rowOfEquality[a]] = work.demand[a];
+  result.removed = (work.original - work.demand).norm();
   result.combinations = p;
-  result.removed = work.vector.norm();
   return result;
 }
 

