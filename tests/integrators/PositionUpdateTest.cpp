@@ -47,3 +47,28 @@ TEST(PositionUpdate, ProjectileMatchesClosedFormToRoundOff) {
   EXPECT_LT((state.poses[0].position - expected).norm(), 1e-12);
   EXPECT_TRUE(state.linearVelocities[0].isApprox(v0 + g * t, 1e-12));
 }
+
+TEST(PositionUpdate, ABodyWithThreeEqualMomentsTurnsAboutItsConstantAngularVelocity) {
+  // A spinning cube (three equal moments, tilted start): the torque-free flow keeps w and L = I w,
+  // and after t the orientation is exp(t w) q0. A body with unequal moments (the same w) takes
+  // the general path and must not keep w (the test can tell the two apart).
+  const Eigen::Vector3d w(3.0, -1.0, 2.0);
+  const Eigen::Quaterniond q0 = geometry::axisRotation(0, 0.3) * geometry::axisRotation(2, 1.1);
+  geometry::BodyState state;
+  state.assign(0, MotionType::Dynamic, geometry::Pose{q0, Eigen::Vector3d::Zero()},
+               Eigen::Vector3d::Zero(), w, 2.0, (1.0 / 600.0) * Eigen::Matrix3d::Identity());
+  state.assign(1, MotionType::Dynamic, geometry::Pose{q0, Eigen::Vector3d::Zero()},
+               Eigen::Vector3d::Zero(), w, 2.0, Eigen::Vector3d(1.0, 2.0, 3.0).asDiagonal());
+  const Eigen::Vector3d momentum1 = state.angularMomentum(1);
+  const double h = 0.01;
+  const int n = 250;
+  for (int i = 0; i < n; ++i) integrators::integratePositions(state, h);
+  EXPECT_EQ(state.angularVelocities[0], w);
+  const Eigen::Quaterniond exact = geometry::quaternionExp(n * h * w) * q0;
+  EXPECT_LT(state.poses[0].rotation.angularDistance(exact), 1e-12);
+  const Eigen::Matrix3d r = state.poses[0].rotationMatrix();
+  EXPECT_TRUE((r * state.bodyInverseInertias[0] * r.transpose())
+                  .isApprox(state.worldInverseInertias[0], 1e-12));
+  EXPECT_GT((state.angularVelocities[1] - w).norm(), 1e-3);
+  EXPECT_LT((state.angularMomentum(1) - momentum1).norm(), 1e-12 * momentum1.norm());
+}
