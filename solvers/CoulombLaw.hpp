@@ -10,21 +10,21 @@
 
 namespace coulomb::solvers {
 
-// sqrt(a^2 + b^2) for the inner loops (Gauss-Seidel sweeps, the Alart-Curnier function): the plain
-// formula when a^2 + b^2 neither overflows nor underflows (then within an ulp or two of std::hypot,
-// which pays for the scaling on every call: 24 % of a pgs sweep), std::hypot otherwise. The common
-// residual keeps std::hypot (bit-identical to fc3d_natural_map_residual).
-inline double sweepNorm(double a, double b) {
+// sqrt(a^2 + b^2) of a tangential pair, everywhere the Coulomb law is evaluated (sweeps, the
+// Alart-Curnier function, the common residual): the plain formula when a^2 + b^2 neither
+// overflows nor underflows (then within an ulp or two of std::hypot, which pays for its scaling
+// on every call: 24 % of a pgs sweep, 3 % of a small scene's step), std::hypot otherwise.
+inline double tangentNorm(double a, double b) {
   const double s = a * a + b * b;
   if (s >= 1e-290 && s <= 1e290) return std::sqrt(s);
   if (a == 0.0 && b == 0.0) return 0.0;
   return std::hypot(a, b);
 }
 
-namespace detail {
-template <class Norm>
-inline void projectOntoCone(double x[3], double mu, Norm norm) {
-  const double t = norm(x[1], x[2]);
+// P_K(x), docs/solver-derivations.md (2.1); the branches and operations of fc3d_project_cone
+// (tests/data/fc3d), with tangentNorm for its std::hypot. No division by mu.
+inline void projectOntoCone(double x[3], double mu) {
+  const double t = tangentNorm(x[1], x[2]);
   if (x[0] >= 0 && t <= mu * x[0]) return;  // (a) inside K (the x_N >= 0 test matters at mu = 0)
   if (mu * t <= -x[0]) {                    // (b) inside the polar cone
     x[0] = x[1] = x[2] = 0.0;
@@ -36,18 +36,6 @@ inline void projectOntoCone(double x[3], double mu, Norm norm) {
     x[1] *= mu * a / t;
     x[2] *= mu * a / t;
   }
-}
-}  // namespace detail
-
-// P_K(x), docs/solver-derivations.md (2.1); same branches and operations as fc3d_project_cone. No
-// division by mu.
-inline void projectOntoCone(double x[3], double mu) {
-  detail::projectOntoCone(x, mu, [](double a, double b) { return std::hypot(a, b); });
-}
-// The same with sweepNorm (Gauss-Seidel updates and their convergence checks: round-off apart,
-// the same projection).
-inline void projectOntoConeSweep(double x[3], double mu) {
-  detail::projectOntoCone(x, mu, sweepNorm);
 }
 
 inline Eigen::Vector3d projectOntoCone(const Eigen::Vector3d& x, double mu) {
@@ -62,13 +50,13 @@ Eigen::Vector3d projectOntoDualCone(const Eigen::Vector3d& y, double mu);
 // P_{D(radius)}(y): disk of the given radius, 0 when radius <= 0, docs/solver-derivations.md (2.5).
 inline Eigen::Vector2d projectOntoDisk(const Eigen::Vector2d& y, double radius) {
   if (radius <= 0) return Eigen::Vector2d::Zero();
-  const double n = std::hypot(y[0], y[1]);
+  const double n = tangentNorm(y[0], y[1]);
   return n <= radius ? y : Eigen::Vector2d(y * (radius / n));
 }
 
 // De Saxce shift u + mu ||u_T|| e_N, docs/solver-derivations.md (1.4).
 inline Eigen::Vector3d deSaxceShift(const Eigen::Vector3d& u, double mu) {
-  return {u[0] + mu * std::hypot(u[1], u[2]), u[1], u[2]};
+  return {u[0] + mu * tangentNorm(u[1], u[2]), u[1], u[2]};
 }
 
 // Elliptic cone {||(x_T1/mu1, x_T2/mu2)|| <= x_N}, mu1, mu2 >= 0 (a zero coefficient forbids that

@@ -232,7 +232,7 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
         if (omega != 1.0) {  // relax the step, then project (3.5)
           double x[3] = {old[0] + omega * (next[0] - old[0]), old[1] + omega * (next[1] - old[1]),
                          old[2] + omega * (next[2] - old[2])};
-          projectOntoConeSweep(x, copy ? copy->mu : blk.mu);
+          projectOntoCone(x, copy ? copy->mu : blk.mu);
           next = Eigen::Vector3d(x[0], x[1], x[2]);
         }
         if (next.allFinite()) r.segment<3>(off) = next;
@@ -335,17 +335,17 @@ void runGaussSeidel(const PreparedProblem& p, const SolveContext& context,
               for (int a = 0; a < p.sizes[b]; ++a) u[off + a] = p.q[off + a];
               body->addBlockVelocity(b, dv, u.data() + off);
             }
-            sums[k] = sweepResidualSquares(p.blocks, static_cast<int>(first),
-                                           static_cast<int>(last), p.offset[first], r, u);
+            sums[k] = residualSquares(p.blocks, static_cast<int>(first), static_cast<int>(last),
+                                      p.offset[first], r, u);
           });
       e = std::sqrt(sumPieces(pieces)) / (1.0 + p.qNorm);
     } else if (body) {  // u = q + J dv: one pass, dv is current
       u = p.q;
       for (int b = 0; b < nb; ++b) body->addBlockVelocity(b, dv, u.data() + p.offset[b]);
-      e = p.sweepResidualFromVelocity(r, u);
+      e = p.residualFromVelocity(r, u);
     } else {
       p.velocity(r, u);
-      e = p.sweepResidualFromVelocity(r, u);
+      e = p.residualFromVelocity(r, u);
     }
     context.record(report, sweep, e);
     report.nativeResidual = e;

@@ -128,11 +128,6 @@ double PreparedProblem::residualFromVelocity(const Eigen::VectorXd& r, const Eig
   return value / (1.0 + qNorm);
 }
 
-double PreparedProblem::sweepResidualFromVelocity(const Eigen::VectorXd& r,
-                                                  const Eigen::VectorXd& u) const {
-  return solvers::sweepResidualFromVelocity(blocks, r, u) / (1.0 + qNorm);
-}
-
 double PreparedProblem::residual(const Eigen::VectorXd& r, Eigen::VectorXd& u,
                                  double* absolute) const {
   velocity(r, u);

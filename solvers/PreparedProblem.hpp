@@ -112,9 +112,6 @@ struct PreparedProblem {
   // residual() gave for them) as `end`.
   void recordEnd(const Eigen::VectorXd& r, const Eigen::VectorXd& u, double residual,
                  double absolute) const;
-  // The same with sweepNorm (round-off apart): Gauss-Seidel's convergence checks.
-  [[nodiscard]] double sweepResidualFromVelocity(const Eigen::VectorXd& r,
-                                                 const Eigen::VectorXd& u) const;
   // Projection onto the constraint set: cones, bounds, [0, inf); equality rows untouched.
   void project(Eigen::VectorXd& r) const;
   [[nodiscard]] Eigen::VectorXd toOriginal(const Eigen::VectorXd& r) const;

@@ -13,8 +13,8 @@ double plainNorm(const Eigen::VectorXd& v) {
   return std::sqrt(s);
 }
 
-// Term by term into the running sum: the order of fc3d_natural_map_residual, so that the total is
-// bit-identical to the reference.
+// Term by term into the running sum, in the order of fc3d_natural_map_residual (tests/data/fc3d):
+// the total agrees with the reference to round-off (tangentNorm for its std::hypot).
 void accumulateBlockResidual(const ConstraintBlock& block, const double* r, const double* u,
                              double& sum) {
   switch (block.kind) {
@@ -26,7 +26,7 @@ void accumulateBlockResidual(const ConstraintBlock& block, const double* r, cons
         for (int k = 0; k < 3; ++k) sum += (rc[k] - p[k]) * (rc[k] - p[k]);
         return;
       }
-      double x[3] = {r[0] - (u[0] + block.mu * std::hypot(u[1], u[2])), r[1] - u[1], r[2] - u[2]};
+      double x[3] = {r[0] - (u[0] + block.mu * tangentNorm(u[1], u[2])), r[1] - u[1], r[2] - u[2]};
       projectOntoCone(x, block.mu);
       for (int k = 0; k < 3; ++k) sum += (r[k] - x[k]) * (r[k] - x[k]);
       return;
@@ -64,27 +64,12 @@ double residualFromVelocity(const std::vector<ConstraintBlock>& blocks, const Ei
   return std::sqrt(s);
 }
 
-double sweepResidualFromVelocity(const std::vector<ConstraintBlock>& blocks,
-                                 const Eigen::VectorXd& r, const Eigen::VectorXd& u) {
-  return std::sqrt(sweepResidualSquares(blocks, 0, static_cast<int>(blocks.size()), 0, r, u));
-}
-
-double sweepResidualSquares(const std::vector<ConstraintBlock>& blocks, int first, int last,
-                            int offset, const Eigen::VectorXd& r, const Eigen::VectorXd& u) {
+double residualSquares(const std::vector<ConstraintBlock>& blocks, int first, int last, int offset,
+                       const Eigen::VectorXd& r, const Eigen::VectorXd& u) {
   double s = 0;
   for (int k = first; k < last; ++k) {
-    const ConstraintBlock& b = blocks[k];
-    const double* rb = r.data() + offset;
-    const double* ub = u.data() + offset;
-    if (b.kind == BlockKind::Contact3D && !b.anisotropic) {
-      double x[3] = {rb[0] - (ub[0] + b.mu * sweepNorm(ub[1], ub[2])), rb[1] - ub[1],
-                     rb[2] - ub[2]};
-      projectOntoConeSweep(x, b.mu);
-      for (int k = 0; k < 3; ++k) s += (rb[k] - x[k]) * (rb[k] - x[k]);
-    } else {
-      accumulateBlockResidual(b, rb, ub, s);
-    }
-    offset += b.size();
+    accumulateBlockResidual(blocks[k], r.data() + offset, u.data() + offset, s);
+    offset += blocks[k].size();
   }
   return s;
 }

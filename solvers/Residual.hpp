@@ -33,15 +33,10 @@ double blockResidualSquared(const ConstraintBlock& block, const double* r, const
 double residualFromVelocity(const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd& r,
                             const Eigen::VectorXd& u);
 
-// The same with sweepNorm instead of std::hypot for the isotropic cones (equal up to round-off):
-// the convergence checks of the Gauss-Seidel loop, which run after nearly every sweep. Reported
-// residuals are always the exact one above.
-double sweepResidualFromVelocity(const std::vector<ConstraintBlock>& blocks,
-                                 const Eigen::VectorXd& r, const Eigen::VectorXd& u);
-// Its sum of squares over blocks [first, last), whose first unknown is at `offset` (the pieces
-// of a split sweep's check, summed in block order by the caller).
-double sweepResidualSquares(const std::vector<ConstraintBlock>& blocks, int first, int last,
-                            int offset, const Eigen::VectorXd& r, const Eigen::VectorXd& u);
+// e_abs^2's part over blocks [first, last), whose first unknown is at `offset` (the pieces of a
+// split sweep's check, summed in block order by the caller).
+double residualSquares(const std::vector<ConstraintBlock>& blocks, int first, int last, int offset,
+                       const Eigen::VectorXd& r, const Eigen::VectorXd& u);
 
 // The common residual of r for the problem: computes u = W r + q, then (1.8).
 ResidualValue commonResidual(const ContactProblem& problem, const Eigen::VectorXd& r);

@@ -51,10 +51,10 @@ std::optional<Eigen::Vector3d> slideFrom(const Eigen::Matrix3d& W, const Eigen::
 // isotropic answer's (4.4), against q_T.
 std::optional<Eigen::Vector2d> slideStart(const Eigen::Vector3d& incoming,
                                           const Eigen::Vector3d& q) {
-  const double incomingT = sweepNorm(incoming[1], incoming[2]);
+  const double incomingT = tangentNorm(incoming[1], incoming[2]);
   if (incoming[0] > 0.0 && incomingT > 0.0)
     return Eigen::Vector2d(incoming[1], incoming[2]) / incomingT;
-  const double qT = sweepNorm(q[1], q[2]);
+  const double qT = tangentNorm(q[1], q[2]);
   if (qT > 0.0) return Eigen::Vector2d(-q[1], -q[2]) / qT;
   return std::nullopt;
 }
@@ -82,7 +82,7 @@ bool sweepContacts(const PreparedProblem& problem, Eigen::VectorXd& r) {
     // Sticking (u = 0) when that answer lies in the cone: the closed form of (4.1) without the
     // local solver's set-up (its LU and spectral radii), the common case of a resting island.
     const Eigen::Vector3d stick = -Wbb.ldlt().solve(qt);
-    if (stick.allFinite() && stick[0] > 0.0 && sweepNorm(stick[1], stick[2]) <= mu * stick[0]) {
+    if (stick.allFinite() && stick[0] > 0.0 && tangentNorm(stick[1], stick[2]) <= mu * stick[0]) {
       r.segment<3>(o) = stick;
       continue;
     }

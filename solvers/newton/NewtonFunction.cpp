@@ -41,8 +41,8 @@ void AlartCurnierFunction::contact(const Eigen::Vector3d& r, const Eigen::Vector
   }
   const double delta =
       radius_ == Radius::PositivePart ? mu * std::max(yN, 0.0) : mu * r[0];  // (5.2a)/(5.2b)
-  const double ny = sweepNorm(yT[0], yT[1]);  // std::hypot's scaling only where it is needed
-  if (ny <= delta) {                          // (5.4a) stick: Phi_T = rho_T u_T
+  const double ny = tangentNorm(yT[0], yT[1]);  // std::hypot's scaling only where it is needed
+  if (ny <= delta) {                            // (5.4a) stick: Phi_T = rho_T u_T
     phi[1] = rhoT * u[1];
     phi[2] = rhoT * u[2];
     A(1, 1) = A(2, 2) = rhoT;

@@ -45,9 +45,9 @@ void PgsSolver::solvePrepared(const PreparedProblem& p, const SolveContext& cont
     const double mu = p.blocks[b].mu;
     Eigen::Vector3d u = l.W * rc + qt;
     if (mode == PgsOptions::Update::ConeProjection) {  // (3.3)
-      double x[3] = {rc[0] - l.rho * (u[0] + mu * sweepNorm(u[1], u[2])), rc[1] - l.rho * u[1],
+      double x[3] = {rc[0] - l.rho * (u[0] + mu * tangentNorm(u[1], u[2])), rc[1] - l.rho * u[1],
                      rc[2] - l.rho * u[2]};
-      projectOntoConeSweep(x, mu);
+      projectOntoCone(x, mu);
       rc = Eigen::Vector3d(x[0], x[1], x[2]);
       return;
     }

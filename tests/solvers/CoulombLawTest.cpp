@@ -62,26 +62,33 @@ TEST(CoulombLaw, DiskShiftAndRegimes) {
   EXPECT_STREQ(contactRegimeName(ContactRegime::Slip), "slip");
 }
 
-// sweepNorm (Gauss-Seidel's replacement of std::hypot) agrees with std::hypot to round-off over
-// the whole range, including the scaled ends and zeros; the sweep's cone projection likewise.
-TEST(CoulombLaw, SweepNormMatchesHypot) {
+// tangentNorm (the Coulomb law's replacement of std::hypot) agrees with std::hypot to round-off
+// over the whole range, including the scaled ends and zeros; the cone projection agrees with the
+// same projection computed with std::hypot (fc3d_project_cone's) likewise.
+TEST(CoulombLaw, TangentNormMatchesHypot) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> mant(-1.0, 1.0);
   std::uniform_int_distribution<int> expo(-1000, 1000);
   for (int t = 0; t < 20000; ++t) {
     const double a = std::ldexp(mant(rng), expo(rng)), b = std::ldexp(mant(rng), expo(rng));
     const double h = std::hypot(a, b);
-    EXPECT_NEAR(sweepNorm(a, b), h, 6e-16 * h) << a << " " << b;
+    EXPECT_NEAR(tangentNorm(a, b), h, 6e-16 * h) << a << " " << b;
     const double mu = 0.5 + 0.5 * mant(rng);
     double x[3] = {mant(rng), mant(rng), mant(rng)}, y[3] = {x[0], x[1], x[2]};
     projectOntoCone(x, mu);
-    projectOntoConeSweep(y, mu);
+    const double yT = std::hypot(y[1], y[2]);  // (2.1) with std::hypot
+    if (!(y[0] >= 0 && yT <= mu * y[0])) {
+      const double n = mu * yT <= -y[0] ? 0.0 : (y[0] + mu * yT) / (1.0 + mu * mu);
+      y[0] = n;
+      y[1] = yT > 0 ? y[1] * mu * n / yT : 0.0;
+      y[2] = yT > 0 ? y[2] * mu * n / yT : 0.0;
+    }
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(x[k], y[k], 1e-15);
   }
-  EXPECT_EQ(sweepNorm(0.0, 0.0), 0.0);
-  EXPECT_EQ(sweepNorm(-0.0, 0.0), 0.0);
-  EXPECT_EQ(sweepNorm(1e-200, 0.0), 1e-200);                     // a^2 underflows: std::hypot
-  EXPECT_EQ(sweepNorm(3e200, 4e200), std::hypot(3e200, 4e200));  // a^2 overflows
-  EXPECT_TRUE(std::isinf(sweepNorm(std::numeric_limits<double>::infinity(), 1.0)));
-  EXPECT_TRUE(std::isnan(sweepNorm(std::numeric_limits<double>::quiet_NaN(), 1.0)));
+  EXPECT_EQ(tangentNorm(0.0, 0.0), 0.0);
+  EXPECT_EQ(tangentNorm(-0.0, 0.0), 0.0);
+  EXPECT_EQ(tangentNorm(1e-200, 0.0), 1e-200);                     // a^2 underflows: std::hypot
+  EXPECT_EQ(tangentNorm(3e200, 4e200), std::hypot(3e200, 4e200));  // a^2 overflows
+  EXPECT_TRUE(std::isinf(tangentNorm(std::numeric_limits<double>::infinity(), 1.0)));
+  EXPECT_TRUE(std::isnan(tangentNorm(std::numeric_limits<double>::quiet_NaN(), 1.0)));
 }

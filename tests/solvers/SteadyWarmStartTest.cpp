@@ -10,6 +10,7 @@
 #include <coulomb/solvers/newton/AcNewtonSolver.hpp>
 #include <coulomb/solvers/newton/FbNewtonSolver.hpp>
 
+#include "TestProblems.hpp"
 #include "TowerProblems.hpp"
 
 #include <memory>
@@ -124,4 +125,58 @@ TEST(SteadyWarmStart, AStartSweepAnswerIsKeptAsItIs) {
   EXPECT_EQ(out.report.iterations, 0);
   EXPECT_NE(out.report.message.find("start sweep"), std::string::npos) << out.report.message;
   EXPECT_FALSE(out.hasNextWarmStart);
+}
+
+namespace {
+
+// One contact pressed onto the ground (W = I, q = (-1, 0, 0): r = (1, 0, 0)), solved exactly,
+// whose steady answer is the exact one for the shifted q, or that one off by `miss` on the normal.
+class ExactOnTheGround final : public ContactSolver {
+ public:
+  explicit ExactOnTheGround(double miss) : miss_(miss) {}
+  [[nodiscard]] std::string name() const override { return "exact_on_the_ground"; }
+  void solvePrepared(const PreparedProblem& p, const SolveContext& /*context*/, Eigen::VectorXd& r,
+                     SolverReport& report) const override {
+    r = -p.q;
+    Eigen::VectorXd u;
+    p.velocity(r, u);
+    double absolute = 0.0;
+    const double e = p.residualFromVelocity(r, u, &absolute);
+    p.recordEnd(r, u, e, absolute);
+    report.status = SolverStatus::Converged;
+    report.iterations = 1;
+    report.nativeResidual = e;
+  }
+  [[nodiscard]] bool steadyAnswer(const PreparedProblem& /*p*/, const Eigen::VectorXd& r,
+                                  const Eigen::VectorXd& uShifted,
+                                  Eigen::VectorXd& out) const override {
+    out = r - uShifted;  // W = I: r' = r - (W r + q')
+    out[0] += miss_;
+    return true;
+  }
+
+ private:
+  double miss_;
+};
+
+}  // namespace
+
+// A steady answer is kept as the next warm start only when it answers the shifted problem within
+// the tolerance: one Newton step on kept factors can miss it (coplanar contact points under a
+// 1000:1 mass ratio), and the kept impulses are the contact forces a user reads.
+TEST(SteadyWarmStart, ASteadyAnswerThatMissesTheShiftedProblemIsNotKept) {
+  const double tolerance = 1e-8;
+  ContactProblem p = coulomb::solvers::fixtures::singleContact(Eigen::Matrix3d::Identity(),
+                                                               Eigen::Vector3d(-1, 0, 0), 0.5);
+  p.warmStart = Eigen::Vector3d(0.5, 0.0, 0.0);  // misses: the solver runs
+  const GivenArrivalRows given(Eigen::Vector3d(0.3 * tolerance, 0.0, 0.0));
+  const SolverOptions options = lentOptions(tolerance, &given);
+  const SolveOutcome exact = ExactOnTheGround(0.0).solve(p, options);
+  ASSERT_EQ(exact.report.status, SolverStatus::Converged);
+  ASSERT_TRUE(exact.hasNextWarmStart);
+  EXPECT_NEAR(exact.nextWarmStart[0], 1.0 + 0.3 * tolerance, 1e-15);
+  const SolveOutcome missing = ExactOnTheGround(1e3 * tolerance).solve(p, options);
+  ASSERT_EQ(missing.report.status, SolverStatus::Converged);
+  EXPECT_EQ(missing.impulses, exact.impulses);
+  EXPECT_FALSE(missing.hasNextWarmStart);
 }
