@@ -6,24 +6,6 @@
 
 namespace coulomb::engine {
 
-std::int32_t IslandBuilder::find(std::int32_t body) {
-  while (parent_[body] != body) {
-    parent_[body] = parent_[parent_[body]];  // path halving
-    body = parent_[body];
-  }
-  return body;
-}
-
-void IslandBuilder::unite(std::int32_t a, std::int32_t b) {
-  a = find(a);
-  b = find(b);
-  if (a == b) return;
-  // The smaller index becomes the root: roots are then each island's smallest body, independent
-  // of the edge order, which keeps island numbering deterministic.
-  if (b < a) std::swap(a, b);
-  parent_[b] = a;
-}
-
 std::vector<Island> IslandBuilder::build(std::span<const std::uint8_t> isDynamic,
                                          std::span<const ConstraintEdge> edges) {
   std::vector<Island> islands;
@@ -34,8 +16,7 @@ std::vector<Island> IslandBuilder::build(std::span<const std::uint8_t> isDynamic
 void IslandBuilder::build(std::span<const std::uint8_t> isDynamic,
                           std::span<const ConstraintEdge> edges, std::vector<Island>& islands) {
   const auto bodyCount = static_cast<std::int32_t>(isDynamic.size());
-  parent_.resize(isDynamic.size());
-  for (std::int32_t i = 0; i < bodyCount; ++i) parent_[i] = i;
+  forest_.reset(bodyCount);
 
   auto dynamicBody = [&](std::int32_t body) {
     if (body == ConstraintEdge::kNoBody) return false;
@@ -49,14 +30,14 @@ void IslandBuilder::build(std::span<const std::uint8_t> isDynamic,
   edgeRoot.assign(edges.size(), ConstraintEdge::kNoBody);
   for (const ConstraintEdge& e : edges) {
     const bool a = dynamicBody(e.bodyA), b = dynamicBody(e.bodyB);
-    if (a && b) unite(e.bodyA, e.bodyB);
+    if (a && b) forest_.unite(e.bodyA, e.bodyB);
   }
 
   std::vector<std::int32_t>& islandOfRoot = islandOfRoot_;
   islandOfRoot.assign(isDynamic.size(), -1);
   std::size_t islandCount = 0;
   auto islandOf = [&](std::int32_t body) -> Island& {
-    const std::int32_t root = find(body);
+    const std::int32_t root = forest_.find(body);
     if (islandOfRoot[root] < 0) {
       islandOfRoot[root] = static_cast<std::int32_t>(islandCount);
       if (islandCount == islands.size()) islands.emplace_back();
@@ -73,11 +54,11 @@ void IslandBuilder::build(std::span<const std::uint8_t> isDynamic,
     const ConstraintEdge& e = edges[k];
     const std::int32_t dyn = dynamicBody(e.bodyA) ? e.bodyA : (dynamicBody(e.bodyB) ? e.bodyB : -1);
     if (dyn < 0) continue;
-    edgeRoot[k] = find(dyn);
+    edgeRoot[k] = forest_.find(dyn);
     rootHasEdge[edgeRoot[k]] = 1;
   }
   for (std::int32_t i = 0; i < bodyCount; ++i)
-    if (isDynamic[i] && rootHasEdge[find(i)]) islandOf(i).bodies.push_back(i);
+    if (isDynamic[i] && rootHasEdge[forest_.find(i)]) islandOf(i).bodies.push_back(i);
   islands.resize(islandCount);
   for (std::size_t k = 0; k < edges.size(); ++k)
     if (edgeRoot[k] >= 0)

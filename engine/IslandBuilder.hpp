@@ -3,6 +3,8 @@
 // joints). Static and kinematic bodies never link islands (golden rule 6): a floor under two
 // separate stacks leaves two islands. Deterministic: bodies and constraints inside an island are in
 // ascending order, and islands are ordered (and numbered) by their smallest body index.
+#include <coulomb/solvers/UnionFind.hpp>
+
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -36,9 +38,9 @@ class IslandBuilder {
              std::vector<Island>& islands);
 
  private:
-  std::int32_t find(std::int32_t body);
-  void unite(std::int32_t a, std::int32_t b);
-  std::vector<std::int32_t> parent_;  // union-find forest, reused between steps
+  // Bodies joined by edges; roots are each island's smallest body, whatever the edge order, which
+  // keeps the island numbering deterministic. Reused between steps.
+  solvers::UnionFind forest_;
   std::vector<std::int32_t> edgeRoot_, islandOfRoot_;
   std::vector<std::uint8_t> rootHasEdge_;
 };

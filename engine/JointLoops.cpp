@@ -3,7 +3,6 @@
 #include <coulomb/engine/ArticulationStage.hpp>
 
 #include <algorithm>
-#include <numeric>
 
 namespace coulomb::engine {
 
@@ -39,21 +38,13 @@ bool equalityRowsCloseALoop(const joints::RowSet& rows,
   }
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  std::vector<int>& parent = scratch.parent;
-  parent.resize(nodes.size());
-  std::iota(parent.begin(), parent.end(), 0);
+  solvers::UnionFind& forest = scratch.forest;
+  forest.reset(static_cast<int>(nodes.size()));
   auto index = [&](std::int32_t body) {
     return static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), body) - nodes.begin());
   };
-  auto root = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (const ConstraintEdge& e : edges) {
-    const int a = root(index(e.bodyA)), b = root(index(e.bodyB));
-    if (a == b) return true;
-    parent[a] = b;
-  }
+  for (const ConstraintEdge& e : edges)
+    if (!forest.unite(index(e.bodyA), index(e.bodyB))) return true;
   return false;
 }
 

@@ -7,8 +7,9 @@
 #include <coulomb/engine/IslandBuilder.hpp>
 #include <coulomb/joints/RowSet.hpp>
 
+#include <coulomb/solvers/UnionFind.hpp>
+
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 namespace coulomb::engine {
@@ -18,7 +19,7 @@ class ArticulationStage;
 struct JointLoopScratch {  // kept with the island for its storage
   std::vector<ConstraintEdge> edges;
   std::vector<std::int32_t> nodes;
-  std::vector<int> parent;
+  solvers::UnionFind forest;
 };
 
 /// `dynamicMask`: per body slot, 1 when it carries unknowns this step (StepData::dynamicMask).

@@ -40,7 +40,7 @@ struct IslandWork {
   // workspaces stay sized to the island found in this slot step after step, so a steady step
   // resizes none of them, and islands never share a solver (independent solves).
   solvers::SolverInstances solvers;
-  std::vector<int> groupScratch;  // solvers::splitsByActingContacts's union-find, kept for storage
+  solvers::UnionFind groupScratch;  // solvers::splitsByActingContacts's, kept for its storage
   // Redundant joint rows (a loop's): the demand removed along them this step, and the storage
   // of the search (engine/JointLoops.hpp, solvers/RedundantRows.hpp).
   solvers::RedundantDemand redundant;

@@ -11,11 +11,6 @@
 namespace coulomb::solvers {
 namespace {
 
-int findRoot(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
 bool isotropicContactsOnly(const ContactProblem& problem) {
   return std::all_of(problem.blocks.begin(), problem.blocks.end(),
                      [](const ConstraintBlock& b) { return b.isContact() && !b.anisotropic; });
@@ -26,20 +21,19 @@ bool actsAtStart(const ContactProblem& problem, int b) {  // approaching or rest
   return problem.q[3 * b] <= 0.0 || (warm && (*problem.warmStart)[3 * b] > 0.0);
 }
 
-// Joins, in `parent`, every two acting contacts that share a block row of W.
+// Joins, in `sets`, every two acting contacts that share a block row of W.
 template <class Acting>
-void uniteThroughW(const BlockSparseMatrix& W, const Acting& acting, std::vector<int>& parent) {
+void uniteThroughW(const BlockSparseMatrix& W, const Acting& acting, UnionFind& sets) {
   for (int b = 0; b < W.blockCount(); ++b) {
     if (!acting(b)) continue;
     for (int k = W.rowBegin(b); k < W.rowEnd(b); ++k)
-      if (const int c = W.blockColumn(k); c != b && acting(c))
-        parent[findRoot(parent, b)] = findRoot(parent, c);
+      if (const int c = W.blockColumn(k); c != b && acting(c)) sets.unite(b, c);
   }
 }
 
 }  // namespace
 
-bool splitsByActingContacts(const ContactProblem& problem, std::vector<int>& parent) {
+bool splitsByActingContacts(const ContactProblem& problem, UnionFind& sets) {
   const int blocks = static_cast<int>(problem.blocks.size());
   if (blocks < 2 || problem.q.size() != 3 * blocks || !isotropicContactsOnly(problem)) return false;
   // Union-find over what links two contacts: their bodies (body-space W) or W's blocks.
@@ -47,8 +41,7 @@ bool splitsByActingContacts(const ContactProblem& problem, std::vector<int>& par
   const BlockSparseMatrix* W = problem.W.blockSparseMatrix();
   if (body == nullptr && W == nullptr) return false;
   const int nodes = body != nullptr ? body->bodyCount() : blocks;
-  parent.resize(static_cast<std::size_t>(nodes));
-  std::iota(parent.begin(), parent.end(), 0);
+  sets.reset(nodes);
   auto nodeOf = [&](int b) {  // a node of contact b: a dynamic body of it, or b itself
     if (body == nullptr) return b;
     const int b0 = body->blockBody(b, 0);
@@ -58,16 +51,16 @@ bool splitsByActingContacts(const ContactProblem& problem, std::vector<int>& par
     for (int b = 0; b < blocks; ++b) {
       if (!actsAtStart(problem, b)) continue;
       const int b0 = body->blockBody(b, 0), b1 = body->blockBody(b, 1);
-      if (b0 >= 0 && b1 >= 0) parent[findRoot(parent, b0)] = findRoot(parent, b1);
+      if (b0 >= 0 && b1 >= 0) sets.unite(b0, b1);
     }
   } else {
     uniteThroughW(
-        *W, [&](int b) { return actsAtStart(problem, b); }, parent);
+        *W, [&](int b) { return actsAtStart(problem, b); }, sets);
   }
   int first = -1;
   for (int b = 0; b < blocks; ++b) {
     if (!actsAtStart(problem, b)) continue;
-    const int root = findRoot(parent, nodeOf(b));
+    const int root = sets.find(nodeOf(b));
     if (first < 0) first = root;
     if (root != first) return true;
   }
@@ -77,16 +70,16 @@ bool splitsByActingContacts(const ContactProblem& problem, std::vector<int>& par
 ActiveGroups activeGroups(const BlockSparseMatrix& W, const std::vector<char>& acts) {
   ActiveGroups groups;
   const int blocks = W.blockCount();
-  std::vector<int> parent(blocks);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind sets;
+  sets.reset(blocks);
   uniteThroughW(
-      W, [&](int b) { return acts[b] != 0; }, parent);
+      W, [&](int b) { return acts[b] != 0; }, sets);
   groups.groupOfBlock.assign(blocks, -1);
   groups.indexInGroup.assign(blocks, -1);
   std::vector<int> groupOfRoot(blocks, -1), sizes;
   for (int b = 0; b < blocks; ++b) {
     if (!acts[b]) continue;
-    int& g = groupOfRoot[findRoot(parent, b)];
+    int& g = groupOfRoot[sets.find(b)];
     if (g < 0) {
       g = groups.count++;
       sizes.push_back(0);

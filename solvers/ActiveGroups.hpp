@@ -19,6 +19,7 @@
 #include <coulomb/solvers/ContactProblem.hpp>
 #include <coulomb/solvers/SolveWithFallback.hpp>
 #include <coulomb/solvers/SolverChooser.hpp>
+#include <coulomb/solvers/UnionFind.hpp>
 
 #include <optional>
 #include <vector>
@@ -37,7 +38,7 @@ struct ActiveGroups {
 // Whether the contacts acting at the start form two groups or more (the test before
 // solveByActiveGroups, on every large island's step): from the bodies they share, with no copy of
 // W; `scratch` keeps its storage between calls. False for a problem with other rows.
-bool splitsByActingContacts(const ContactProblem& problem, std::vector<int>& scratch);
+bool splitsByActingContacts(const ContactProblem& problem, UnionFind& scratch);
 
 // The groups of the blocks marked in `acts` (one flag per block), linked through W's blocks.
 ActiveGroups activeGroups(const BlockSparseMatrix& W, const std::vector<char>& acts);

@@ -88,7 +88,7 @@ TEST(ActiveGroups, SideBySideBodiesAreSolvedAsTwoGroups) {
   const ContactProblem p = pointProblem(
       {{-1, 0, 2, 0.0}, {-1, 0, 2, 0.0}, {-1, 1, 2, 0.0}, {-1, 1, 2, 0.0}, {0, 1, 0, 0.01}},
       {Eigen::Vector3d(0, 0, fall), Eigen::Vector3d(0, 0, fall)}, 0.5);
-  std::vector<int> scratch;
+  UnionFind scratch;
   ASSERT_TRUE(splitsByActingContacts(p, scratch));
   const std::optional<PlanOutcome> out = solveByGroups(p);
   ASSERT_TRUE(out.has_value());
@@ -133,7 +133,7 @@ TEST(ActiveGroups, OneGroupIsLeftToTheWholePlan) {
   const ContactProblem p =
       pointProblem({{-1, 0, 2, 0.0}, {-1, 0, 2, 0.0}, {0, 1, 2, 0.0}},
                    {Eigen::Vector3d(0, 0, fall), Eigen::Vector3d(0, 0, fall)}, 0.5);
-  std::vector<int> scratch;
+  UnionFind scratch;
   EXPECT_FALSE(splitsByActingContacts(p, scratch));
   EXPECT_FALSE(solveByGroups(p).has_value());
 }
