@@ -35,7 +35,8 @@ class SparseLdlt {
   bool factorizeRevealing(const std::vector<double>& values, double pivotFloor,
                           std::vector<int>& dependent);
   /// For a dependent row k (ordered index, from factorizeRevealing): n = P^T L^-T e_k in the
-  /// original order, a vector with A n = d_k L e_k, i.e. of the (near) null space of A.
+  /// original order. The factors are of A + D_f, so (A + D_f) n = d_k L e_k with d_k the floored
+  /// pivot: A n is of the size of the floor, n a vector of A's (near) null space.
   void nullVector(int k, Eigen::VectorXd& n);
   /// x = A^-1 b with the last successful factorization (x may alias b).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
