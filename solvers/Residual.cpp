@@ -55,13 +55,7 @@ double blockResidualSquared(const ConstraintBlock& block, const double* r, const
 
 double residualFromVelocity(const std::vector<ConstraintBlock>& blocks, const Eigen::VectorXd& r,
                             const Eigen::VectorXd& u) {
-  double s = 0;
-  int offset = 0;
-  for (const ConstraintBlock& b : blocks) {
-    accumulateBlockResidual(b, r.data() + offset, u.data() + offset, s);
-    offset += b.size();
-  }
-  return std::sqrt(s);
+  return std::sqrt(residualSquares(blocks, 0, static_cast<int>(blocks.size()), 0, r, u));
 }
 
 double residualSquares(const std::vector<ConstraintBlock>& blocks, int first, int last, int offset,
