@@ -233,7 +233,7 @@ class World {
   void projectJointIslandEnergies();  // islands of ideal joints back to their start E~
   void splitJointIslandKicks();       // islands of ideal joints: the first half kick only
   void finishJointIslandKicks();      // their second half kick, then J(x+) v = 0 (RATTLE)
-  void fillIslandReport(const IslandWork& island, IslandReport& report) const;
+  void fillIslandReport(IslandWork& island, IslandReport& report);
   /// Adds a StepReport warning when no solver of the island's plan could run (said once per
   /// choice of solvers).
   void warnIfUnsolved(const IslandWork& island, const solvers::SolverChoice& choice);

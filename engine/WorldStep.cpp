@@ -384,7 +384,10 @@ void World::resetReport(double h) {
   r.threads = executor_.threads();
 }
 
-void World::fillIslandReport(const IslandWork& island, IslandReport& report) const {
+// The plan and the reports are swapped into the step report, not copied: the island's work is
+// rewritten from scratch by the next step, and both sides keep their strings' and vectors'
+// storage, so a steady step neither allocates nor copies them.
+void World::fillIslandReport(IslandWork& island, IslandReport& report) {
   report.island = island.island.id;
   report.bodies = island.island.bodies.size();
   report.contacts = island.blocks[kContactRows].count;
@@ -392,11 +395,11 @@ void World::fillIslandReport(const IslandWork& island, IslandReport& report) con
   report.degreesOfFreedom = island.assembled.degreesOfFreedom;
   report.redundantJointRows = island.redundant.combinations;
   report.redundantDemandRemoved = island.redundant.removed;
-  report.plan = island.plan;
+  std::swap(report.plan, island.plan);
   report.status = island.outcome.status;
-  report.solve = island.outcome.best.report;
-  report.attempts = island.outcome.attempts;
-  report.penetration = island.penetration;
+  std::swap(report.solve, island.outcome.best.report);
+  std::swap(report.attempts, island.outcome.attempts);
+  std::swap(report.penetration, island.penetration);
   report.penetrationSeconds = island.penetrationSeconds;
 }
 
