@@ -87,3 +87,36 @@ TEST(BlockSparseMatrix, ShiftedDiagonalOverACopyEqualsANewShiftedCopy) {
   const BlockSparseMatrix other({3}, {{0, 0, {1, 0, 0, 0, 1, 0, 0, 0, 1}}});
   EXPECT_THROW(shifted.assignShiftedDiagonal(other, 1.0), std::logic_error);
 }
+
+// adoptBlockCsr keeps the index of a pattern it already holds (an island refilled step after
+// step): the new values are used, a changed pattern is indexed anew, and a rejected pattern is
+// rejected again when it comes back (nothing of it is taken as indexed).
+TEST(BlockSparseMatrix, AdoptingTheHeldPatternUsesTheNewValues) {
+  const std::vector<int> sizes{3, 1}, rowStart{0, 2, 4}, columns{0, 1, 0, 1};
+  std::vector<double> values{4, 1, 0, 1, 3, 0, 0, 0, 2, 1, 0, 2, 1, 0, 2, 6};
+  BlockSparseMatrix A;
+  A.adoptBlockCsr(sizes, rowStart, columns, values);
+  const Eigen::MatrixXd first = A.toDense();
+  std::vector<double> doubled{8, 2, 0, 2, 6, 0, 0, 0, 4, 2, 0, 4, 2, 0, 4, 12};
+  A.adoptBlockCsr(sizes, rowStart, columns, doubled);
+  EXPECT_EQ((A.toDense() - 2.0 * first).norm(), 0.0);
+  const Eigen::VectorXd x = Eigen::Vector4d(1, -2, 3, 0.5);
+  Eigen::VectorXd y;
+  A.multiply(x, y);
+  EXPECT_LT((y - 2.0 * first * x).norm(), 1e-14);
+
+  // Another pattern: the off-diagonal blocks dropped.
+  std::vector<double> diagonalOnly{4, 1, 0, 1, 3, 0, 0, 0, 2, 6};
+  A.adoptBlockCsr(sizes, {0, 1, 2}, {0, 1}, diagonalOnly);
+  EXPECT_EQ(A.nonZeroBlocks(), 2);
+  EXPECT_EQ(A.diagonalBlock(1), 1);
+  EXPECT_DOUBLE_EQ(A.toDense()(3, 0), 0.0);
+  EXPECT_DOUBLE_EQ(A.toDense()(3, 3), 6.0);
+
+  // A pattern with too few values is rejected, and again the second time.
+  BlockSparseMatrix B;
+  std::vector<double> few(9, 1.0);
+  EXPECT_THROW(B.adoptBlockCsr(sizes, rowStart, columns, few), std::invalid_argument);
+  std::vector<double> fewAgain(9, 1.0);
+  EXPECT_THROW(B.adoptBlockCsr(sizes, rowStart, columns, fewAgain), std::invalid_argument);
+}
