@@ -283,15 +283,22 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
     q.segment(out.slots[k].offset, out.slots[k].rows) = u;
   }
   // Grouped by body, in block order inside a body (deterministic): a stable counting sort by
-  // body gives std::sort's order, as the touches were appended in (block, side) order.
-  {
+  // body gives std::sort's order, as the touches were appended in (block, side) order. Its
+  // counts span the island's body indices only, not the world's: one island among many costs
+  // what its own bodies do.
+  if (!touches.empty()) {
+    std::uint32_t lowest = touches.front().body, highest = lowest;
+    for (const Touch& t : touches) {
+      lowest = std::min(lowest, t.body);
+      highest = std::max(highest, t.body);
+    }
     std::vector<int>& next = scratch.next;
-    next.assign(state.size() + 1, 0);
-    for (const Touch& t : touches) ++next[t.body + 1];
+    next.assign(highest - lowest + 2, 0);
+    for (const Touch& t : touches) ++next[t.body - lowest + 1];
     for (std::size_t b = 1; b < next.size(); ++b) next[b] += next[b - 1];
     std::vector<Touch>& sorted = scratch.sorted;
     sorted.resize(touches.size());
-    for (const Touch& t : touches) sorted[next[t.body]++] = t;
+    for (const Touch& t : touches) sorted[next[t.body - lowest]++] = t;
     touches.swap(sorted);
   }
   std::vector<int>& groupOfSide = scratch.groupOfSide;  // (block, side) -> its body's group
