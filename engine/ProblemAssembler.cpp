@@ -284,13 +284,17 @@ void ProblemAssembler::assemble(const joints::RowSet& rows, const geometry::Body
   }
   // Grouped by body, in block order inside a body (deterministic): a stable counting sort by
   // body gives std::sort's order, as the touches were appended in (block, side) order. Its
-  // counts span the island's body indices only, not the world's: one island among many costs
-  // what its own bodies do.
+  // counts span the world's bodies when they are no more than the touches (one island holding
+  // the world), else the island's range of body indices, found in one pass over the touches:
+  // one island among many costs what its own bodies do.
   if (!touches.empty()) {
-    std::uint32_t lowest = touches.front().body, highest = lowest;
-    for (const Touch& t : touches) {
-      lowest = std::min(lowest, t.body);
-      highest = std::max(highest, t.body);
+    std::uint32_t lowest = 0, highest = static_cast<std::uint32_t>(state.size() - 1);
+    if (state.size() > touches.size()) {
+      lowest = highest = touches.front().body;
+      for (const Touch& t : touches) {
+        lowest = std::min(lowest, t.body);
+        highest = std::max(highest, t.body);
+      }
     }
     std::vector<int>& next = scratch.next;
     next.assign(highest - lowest + 2, 0);
