@@ -6,24 +6,43 @@
 namespace coulomb::solvers {
 namespace {
 
-// W_ii of the normal rows, when it is cheap (dense or block-sparse over the problem's blocks).
-bool normalDiagonal(const ContactProblem& problem, int row, int block, double& value) {
-  if (const Eigen::MatrixXd* dense = problem.W.denseMatrix()) {
-    value = (*dense)(row, row);
+// W_ii of the normal rows, when it is cheap (dense or block-sparse over the problem's blocks):
+// which of W's forms holds them is looked up once per problem, not once per contact.
+class NormalDiagonal {
+ public:
+  explicit NormalDiagonal(const ContactProblem& problem) {
+    const auto blocks = static_cast<int>(problem.blocks.size());
+    dense_ = problem.W.denseMatrix();
+    if (dense_ != nullptr) return;
+    if (const BodySpaceDelassus* body = problem.W.bodySpaceOperator()) {
+      if (body->blockCount() == blocks) body_ = body;
+      return;
+    }
+    const BlockSparseMatrix* sparse = problem.W.blockSparseMatrix();
+    if (sparse != nullptr && sparse->blockCount() == blocks) sparse_ = sparse;
+  }
+  // W_ii of row `row`, the first of block `block`; false when W does not hold it cheaply.
+  bool at(int row, int block, double& value) const {
+    if (dense_ != nullptr) {
+      value = (*dense_)(row, row);
+      return true;
+    }
+    if (body_ != nullptr) {
+      value = body_->diagonalBlocks()[9 * static_cast<std::size_t>(block)];  // cached W_bb
+      return true;
+    }
+    if (sparse_ == nullptr) return false;
+    const int k = sparse_->diagonalBlock(block);
+    if (k < 0) return false;
+    value = sparse_->blockValues(k)[0];
     return true;
   }
-  if (const BodySpaceDelassus* body = problem.W.bodySpaceOperator()) {
-    if (body->blockCount() != static_cast<int>(problem.blocks.size())) return false;
-    value = body->diagonalBlocks()[9 * static_cast<std::size_t>(block)];  // cached W_bb
-    return true;
-  }
-  const BlockSparseMatrix* sparse = problem.W.blockSparseMatrix();
-  if (!sparse || sparse->blockCount() != static_cast<int>(problem.blocks.size())) return false;
-  const int k = sparse->diagonalBlock(block);
-  if (k < 0) return false;
-  value = sparse->blockValues(k)[0];
-  return true;
-}
+
+ private:
+  const Eigen::MatrixXd* dense_ = nullptr;
+  const BodySpaceDelassus* body_ = nullptr;
+  const BlockSparseMatrix* sparse_ = nullptr;
+};
 
 }  // namespace
 
@@ -35,6 +54,7 @@ ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
   f.zeroIsExact = true;
   f.factored = problem.W.bodySpaceOperator() != nullptr;
   double minW = std::numeric_limits<double>::infinity(), maxW = 0.0;
+  const NormalDiagonal normalDiagonal(problem);
   bool diagonalKnown = true;
   int row = 0;  // first row of block b
   for (size_t b = 0; b < problem.blocks.size(); row += problem.blocks[b++].size()) {
@@ -66,7 +86,7 @@ ProblemFeatures measureProblemFeatures(const ContactProblem& problem,
     if (!(qN <= 0 || warm)) continue;
     ++f.activeContacts;
     double w = 0;
-    if (diagonalKnown && normalDiagonal(problem, row, static_cast<int>(b), w) && w > 0) {
+    if (diagonalKnown && normalDiagonal.at(row, static_cast<int>(b), w) && w > 0) {
       minW = std::min(minW, w);
       maxW = std::max(maxW, w);
     } else {
