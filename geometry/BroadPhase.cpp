@@ -6,8 +6,14 @@
 #include <stdexcept>
 
 namespace coulomb::geometry {
+namespace {
+constexpr std::size_t kNoCollider = static_cast<std::size_t>(-1);
+}  // namespace
 
 std::size_t BroadPhase::indexOf(ColliderId id) const {
+  if (id.index < indexBySlot_.size() && indexBySlot_[id.index].second == id.generation &&
+      indexBySlot_[id.index].first != kNoCollider)
+    return indexBySlot_[id.index].first;
   const auto it =
       std::lower_bound(indexById_.begin(), indexById_.end(), id,
                        [](const auto& entry, ColliderId key) { return entry.first < key; });
@@ -44,6 +50,15 @@ const std::vector<CandidatePair>& BroadPhase::update(const std::vector<Collider>
     (std::holds_alternative<Plane>(*c.shape) ? planes : solids).push_back(i);
   }
   std::sort(indexById_.begin(), indexById_.end());
+  // A table by slot when the slots are dense (at most twice the colliders, plus a little): one
+  // look-up per pair's collider instead of a binary search.
+  indexBySlot_.clear();
+  const std::uint32_t slots = indexById_.empty() ? 0 : indexById_.back().first.index + 1;
+  if (!indexById_.empty() && indexById_.back().first.valid() &&
+      slots <= 2 * indexById_.size() + 64) {
+    indexBySlot_.assign(slots, {kNoCollider, 0});
+    for (const auto& [id, i] : indexById_) indexBySlot_[id.index] = {i, id.generation};
+  }
   if (scene.size() != indexById_.size())  // colliders removed since the last step
     for (const ColliderId id : scene.ids())
       if (!std::binary_search(indexById_.begin(), indexById_.end(), std::pair{id, std::size_t{0}},

@@ -35,6 +35,9 @@ class BroadPhase {
   std::size_t indexOf(ColliderId id) const;
 
   std::vector<std::pair<ColliderId, std::size_t>> indexById_;  // sorted by id
+  // indexBySlot_[id.index]: the collider's position and generation, when the ids' slots are
+  // dense (a World's are); else empty and indexOf searches indexById_.
+  std::vector<std::pair<std::size_t, std::uint32_t>> indexBySlot_;
   std::vector<std::size_t> planes_, solids_;
   std::vector<std::pair<ColliderId, ColliderId>> ids_;
   std::vector<CandidatePair> pairs_;

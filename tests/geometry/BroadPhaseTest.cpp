@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <span>
 #include <vector>
@@ -47,6 +48,27 @@ TEST(BroadPhase, SortedByIdsWhateverTheListOrder) {
   EXPECT_EQ(f.run(), (Pairs{{1, 3}, {3, 5}, {5, 9}}));
   f.poses[0] = Pose::translation({20, 0, 0});  // incremental update: 5 leaves
   EXPECT_EQ(f.run(), (Pairs{{1, 3}}));
+}
+
+// Colliders are found by their slot when the ids' slots are dense (a World's), and by a search
+// otherwise (ids from anywhere) or when two generations share a slot: the same pairs each way.
+TEST(BroadPhase, SparseSlotsAndSharedSlotsGiveTheSamePairs) {
+  Fixture dense, sparse, shared;
+  for (std::uint32_t k = 0; k < 4; ++k) {
+    dense.add(k, k, Box{}, {1.0 * k, 0, 0});
+    sparse.add(1000000u * (k + 1), k, Box{}, {1.0 * k, 0, 0});
+    shared.add(k, k, Box{}, {1.0 * k, 0, 0});
+  }
+  shared.colliders[2].id = {1, 7};  // slot 1 twice: generations 0 and 7
+  EXPECT_EQ(dense.run(), (Pairs{{0, 1}, {1, 2}, {2, 3}}));
+  EXPECT_EQ(sparse.run(), (Pairs{{1000000, 2000000}, {2000000, 3000000}, {3000000, 4000000}}));
+  std::vector<char> usable(4, 1);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> bodies;
+  for (const CandidatePair& p : shared.broad.update(shared.colliders, shared.poses, usable,
+                                                    shared.scene, 0.005, {}, shared.failures))
+    bodies.emplace_back(shared.colliders[p.a].body.index, shared.colliders[p.b].body.index);
+  std::sort(bodies.begin(), bodies.end());
+  EXPECT_EQ(bodies, (Pairs{{0, 1}, {1, 2}, {2, 3}}));
 }
 
 TEST(BroadPhase, NoPairsWithinOneBody) {
